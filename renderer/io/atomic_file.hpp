@@ -1,0 +1,18 @@
+#pragma once
+// Writes a file so that readers never see a partial one: the content goes to a
+// temporary name in the same folder (same file system), then is renamed over
+// the target. If writing throws, the temporary is removed and the target is
+// left as it was.
+#include <filesystem>
+#include <functional>
+
+namespace cutaway {
+
+/// Calls write(tmp) with a temporary path next to `target`, then renames it to
+/// `target`. Throws RuntimeError naming the target when the folder is not
+/// writable or the rename fails; rethrows whatever write() throws, after
+/// removing the temporary.
+void writeAtomically(const std::filesystem::path& target,
+                     const std::function<void(const std::filesystem::path& tmp)>& write);
+
+} // namespace cutaway

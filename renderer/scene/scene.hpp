@@ -1,0 +1,131 @@
+#pragma once
+// The scene model: what one frame needs, after parsing and validation.
+//
+// Units: lengths in millimetres of the scan's physical extent; angles in
+// degrees; colours linear RGB in [0, 1]. World space is the volume's index
+// axes scaled by its spacing, with the origin at the centre of the volume box
+// (so a 256^3 scan at 1 mm spans [-128, 128]^3). Scene JSON keys are
+// snake_case; see docs/scene-format.md for every key, range and default.
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "volume/volume.hpp"
+
+namespace cutaway {
+
+/// /volume: where the scalar field comes from. Exactly one of file / phantom.
+struct VolumeSource {
+    std::filesystem::path file;         ///< resolved against the scene's folder; empty for a phantom
+    std::optional<RawLayout> raw;       ///< /volume/raw: layout of a headerless file
+    std::string phantom;                ///< /volume/phantom: "head" or "orange"
+    glm::ivec3 phantomSize{128};        ///< /volume/size (phantoms only), each in [8, 1024]
+    std::optional<glm::dvec3> spacing;  ///< /volume/spacing: overrides the file's, mm, > 0
+    std::optional<std::array<double, 2>> window; ///< /volume/window: [lo, hi] values, lo < hi
+};
+
+/// One control point of a piecewise-linear transfer function. `value` is in the
+/// volume's physical units (after slope/intercept). `alpha` is the opacity of a
+/// sample one reference step thick (the smallest voxel spacing); rendering
+/// corrects it for the actual slice spacing.
+struct TransferPoint {
+    double value = 0.0;
+    glm::vec3 color{1.0f};
+    float alpha = 0.0f;
+};
+
+/// /transfer: points sorted by strictly increasing value (at least 2).
+/// Below the first point the first point's colour applies, above the last the last's.
+struct TransferFunction {
+    std::vector<TransferPoint> points;
+};
+
+enum class Projection { Perspective, Orthographic };
+
+/// /camera: either an orbit around a target (default the volume centre) or a
+/// look-at. Distance 0 means "fit the volume's bounding sphere in view".
+struct Camera {
+    Projection projection = Projection::Perspective;
+    double fovDeg = 30.0;        ///< /camera/fov: vertical field of view, (0, 170)
+    double orthoHeight = 0.0;    ///< /camera/ortho_height: mm visible vertically; 0 = fit
+    bool useOrbit = true;
+    // orbit: eye = target + distance * (cos(el) sin(az), -cos(el) cos(az), sin(el)) in the
+    // frame whose third axis is `up`; azimuth 0, elevation 0 looks along +y.
+    double azimuthDeg = 0.0;
+    double elevationDeg = 0.0;   ///< (-90, 90)
+    double distance = 0.0;       ///< mm from target; 0 = fit
+    glm::dvec3 target{0.0};
+    glm::dvec3 up{0.0, 0.0, 1.0};
+    // look_at
+    glm::dvec3 eye{0.0, -500.0, 0.0};
+};
+
+struct DirectionalLight {
+    glm::dvec3 direction{0.0, 0.0, -1.0}; ///< the direction the light travels, world space
+    glm::vec3 color{1.0f};
+    float intensity = 1.0f;
+};
+
+/// /lights
+struct Lights {
+    float ambient = 0.2f;    ///< /lights/ambient, [0, 1]
+    float headlight = 0.8f;  ///< /lights/headlight: intensity of a white light at the eye, >= 0
+    std::vector<DirectionalLight> directional; ///< /lights/directional, at most 4
+};
+
+/// /render/shading: Blinn-Phong material applied to every sample.
+struct Shading {
+    bool enabled = true;
+    float diffuse = 0.8f;
+    float specular = 0.3f;
+    float shininess = 32.0f; ///< [1, 512]
+};
+
+/// /render
+struct RenderSettings {
+    int width = 512;                 ///< /render/size[0], [1, 16384]
+    int height = 512;                ///< /render/size[1]
+    double sliceSpacing = 1.0;       ///< /render/slice_spacing: in voxels (smallest spacing), [0.05, 16]
+    glm::vec4 background{0, 0, 0, 1}; ///< /render/background: RGB(A) or "transparent" (0,0,0,0)
+    Shading shading;
+};
+
+enum class PixelType { Half, Float };
+
+/// /output
+struct OutputSettings {
+    std::string pattern = "cutaway_####.exr"; ///< resolved against the scene's folder when relative
+    PixelType pixelType = PixelType::Half;    ///< /output/pixel_type: "half" | "float"
+    bool png = false;                         ///< /output/png: also write an sRGB PNG preview
+};
+
+struct Scene {
+    int version = 1;
+    std::filesystem::path file;     ///< the scene file, empty when parsed from a string
+    std::filesystem::path baseDir;  ///< relative paths resolve against this
+    VolumeSource volume;
+    TransferFunction transfer;
+    Camera camera;
+    Lights lights;
+    RenderSettings render;
+    OutputSettings output;
+    nlohmann::json document;        ///< the validated JSON as given (for EXR headers)
+};
+
+/// Parses and validates a scene document. Every problem found is reported at
+/// once in one InputError whose message has one line per problem:
+///   "SOURCE: /render/size/0: expected an integer in [1, 16384], got -5".
+/// `source` names the document in messages (a file path, or "<string>").
+/// Files named by the scene must exist (checked here).
+Scene parseScene(const nlohmann::json& document, const std::filesystem::path& baseDir,
+                 const std::string& source = "<string>");
+
+/// Reads a JSON file (syntax errors name line and column) and parses it.
+Scene loadScene(const std::filesystem::path& file);
+
+} // namespace cutaway

@@ -1,0 +1,80 @@
+#pragma once
+// A scalar volume on a regular grid, as read from disk or made by a phantom.
+//
+// Voxels are kept in their native type (a label volume with ids up to 12175
+// stays int16; a uint8 CT stays one byte per voxel), x fastest, then y, then z,
+// in host byte order. The physical value of voxel i is raw(i) * slope + inter
+// (NIfTI scl_slope/scl_inter; 1 and 0 otherwise).
+//
+// Geometry: voxel (i, j, k) covers the cell [i, i+1] x [j, j+1] x [k, k+1] in
+// index space; its centre is at (i + 0.5, ...). Physical extent in millimetres
+// is dims * spacing. Direction cosines and origins from the file are kept for
+// reference but cutaway renders in the axis frame of the index grid.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace cutaway {
+
+enum class VoxelType { U8, I8, U16, I16, U32, I32, F32, F64 };
+
+/// Bytes per voxel of a type.
+std::size_t voxelSize(VoxelType type);
+/// Canonical name: "uint8", "int8", "uint16", "int16", "uint32", "int32", "float32", "float64".
+std::string_view voxelTypeName(VoxelType type);
+/// Parses a canonical name (as above); throws InputError naming `context` otherwise.
+VoxelType parseVoxelType(std::string_view name, std::string_view context);
+
+struct Volume {
+    glm::ivec3 dims{0};          ///< voxels along x, y, z; each >= 1
+    glm::dvec3 spacing{1.0};     ///< millimetres between voxel centres, each > 0 and finite
+    glm::dvec3 origin{0.0};      ///< physical position of voxel (0,0,0), informational
+    VoxelType type = VoxelType::U8;
+    double slope = 1.0;          ///< value = raw * slope + inter
+    double inter = 0.0;
+    std::vector<std::byte> data; ///< voxelCount() * voxelSize(type) bytes
+
+    std::size_t voxelCount() const;
+    std::size_t index(int x, int y, int z) const; ///< x + dims.x * (y + dims.y * z)
+    double raw(std::size_t i) const;              ///< the stored number, converted to double
+    double value(std::size_t i) const { return raw(i) * slope + inter; }
+    double value(int x, int y, int z) const { return value(index(x, y, z)); }
+    glm::dvec3 extent() const { return glm::dvec3(dims) * spacing; } ///< millimetres
+
+    /// Allocates zeroed storage for the given shape and type.
+    static Volume allocate(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing = glm::dvec3(1.0));
+};
+
+/// Minimum and maximum physical value (NaN voxels ignored; an all-NaN volume gives {0, 0}).
+struct ValueRange {
+    double min = 0.0;
+    double max = 0.0;
+};
+ValueRange valueRange(const Volume& volume);
+
+/// Layout of a headerless raw file.
+struct RawLayout {
+    glm::ivec3 dims{0};
+    VoxelType type = VoxelType::U8;
+    glm::dvec3 spacing{1.0};
+    bool bigEndian = false;
+    std::uint64_t offset = 0; ///< bytes to skip before the first voxel
+};
+
+/// Reads .nrrd/.nhdr, .nii/.nii.gz by extension. Throws InputError naming the
+/// file and the problem (missing file, bad header, truncated data, ...).
+Volume readVolume(const std::filesystem::path& path);
+Volume readNrrd(const std::filesystem::path& path);
+Volume readNifti(const std::filesystem::path& path);
+Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
+
+/// Writes an attached-header NRRD (raw or gzip encoding), native voxel type,
+/// little endian, with spacings. Written to a temporary name, then renamed.
+void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzip = true);
+
+} // namespace cutaway

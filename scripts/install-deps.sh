@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages cutaway needs to build, test and run.
+# Idempotent and quiet: when everything is present it prints nothing and
+# touches nothing. Used by `make demo`, `make test` and CI alike.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  glslang-tools
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
+  libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev libbenchmark-dev zlib1g-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "cutaway: installing missing Debian packages: ${missing[*]}"
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "cutaway: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "cutaway: packages installed"
