@@ -10,7 +10,8 @@ namespace cutaway {
 
 void writePng(const std::filesystem::path& path, const Image& image);
 
-/// Linear [0,1] -> sRGB-encoded [0,1] (IEC 61966-2-1 curve).
+/// Linear [0,1] -> sRGB-encoded [0,1] (IEC 61966-2-1 curve). Inputs outside [0,1]
+/// are clamped first; NaN gives 0.
 float linearToSrgb(float linear);
 
 } // namespace cutaway

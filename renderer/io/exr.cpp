@@ -1,0 +1,163 @@
+#include "io/exr.hpp"
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+#include <Imath/half.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <new>
+
+namespace cutaway {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kChannelNames[4] = {"R", "G", "B", "A"};
+constexpr float kHalfMax = 65504.0f; // largest finite half
+
+// Clamps to the finite half range before converting: Imath would turn values
+// beyond +-65504 into infinities, and NaN would stay NaN; both poison
+// compositing downstream, so out-of-range values saturate and NaN becomes 0.
+half toHalf(float value) {
+    if (std::isnan(value)) return half(0.0f);
+    if (value > kHalfMax) return half(kHalfMax);
+    if (value < -kHalfMax) return half(-kHalfMax);
+    return half(value);
+}
+
+void checkImage(const fs::path& path, const Image& image) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
+        throw RuntimeError("cannot write " + path.string() + ": image is " +
+                           std::to_string(image.width) + "x" + std::to_string(image.height) +
+                           " but holds " + std::to_string(image.rgba.size()) + " floats");
+    }
+}
+
+Imf::Header makeHeader(const Image& image, const ExrOptions& options) {
+    Imf::Header header(image.width, image.height); // data = display window, origin (0,0)
+    header.compression() = Imf::ZIP_COMPRESSION;
+    header.lineOrder() = Imf::INCREASING_Y; // row 0 first, the top row as in Image
+    const Imf::PixelType type = options.halfFloat ? Imf::HALF : Imf::FLOAT;
+    for (const char* name : kChannelNames)
+        header.channels().insert(name, Imf::Channel(type));
+    // "software" is not one of OpenEXR's standard attributes; it is a plain
+    // string attribute by convention. Inserted first so a caller's attribute
+    // of the same name wins.
+    header.insert("software", Imf::StringAttribute("cutaway " CUTAWAY_VERSION));
+    for (const auto& [name, value] : options.attributes) {
+        header.insert(name, Imf::StringAttribute(value)); // throws on a clash of types
+    }
+    return header;
+}
+
+// Writes through our own ofstream: OutputFile's destructor writes the line
+// offset table and swallows any error doing so, so the stream state is the
+// only reliable sign that the file is complete.
+template <typename Pixel>
+void writePixels(const fs::path& tmp, const Imf::Header& header, const Pixel* pixels, int width,
+                 int height, Imf::PixelType type) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw RuntimeError("cannot create " + tmp.string());
+    {
+        Imf::StdOFStream stream(out, tmp.c_str());
+        Imf::OutputFile file(stream, header);
+        const std::size_t xStride = 4 * sizeof(Pixel);
+        const std::size_t yStride = xStride * static_cast<std::size_t>(width);
+        Imf::FrameBuffer frameBuffer;
+        for (int c = 0; c < 4; ++c) {
+            frameBuffer.insert(
+                kChannelNames[c],
+                Imf::Slice::Make(type, pixels + c, header.dataWindow(), xStride, yStride));
+        }
+        file.setFrameBuffer(frameBuffer);
+        file.writePixels(height);
+    }
+    out.close();
+    if (!out) throw RuntimeError("write error (disk full?)");
+}
+
+} // namespace
+
+void writeExr(const fs::path& path, const Image& image, const ExrOptions& options) {
+    checkImage(path, image);
+    writeAtomically(path, [&](const fs::path& tmp) {
+        try {
+            const Imf::Header header = makeHeader(image, options);
+            if (options.halfFloat) {
+                std::vector<half> halves(image.rgba.size());
+                for (std::size_t i = 0; i < halves.size(); ++i)
+                    halves[i] = toHalf(image.rgba[i]);
+                writePixels(tmp, header, halves.data(), image.width, image.height, Imf::HALF);
+            } else {
+                writePixels(tmp, header, image.rgba.data(), image.width, image.height, Imf::FLOAT);
+            }
+        } catch (const std::exception& e) { // ours, and Iex::BaseExc which derives from it
+            throw RuntimeError("cannot write " + path.string() + ": " + e.what());
+        }
+    });
+}
+
+Image readExr(const fs::path& path) {
+    Image image;
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i window = file.header().dataWindow();
+        const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
+        const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
+        // Bounds the allocation below; 2^28 pixels is 4 GiB of floats.
+        if (width <= 0 || height <= 0 || width > std::numeric_limits<int>::max() ||
+            height > std::numeric_limits<int>::max() || width * height > (std::int64_t{1} << 28)) {
+            throw InputError("cannot read " + path.string() + ": unsupported data window " +
+                             std::to_string(width) + "x" + std::to_string(height));
+        }
+        image = Image(static_cast<int>(width), static_cast<int>(height));
+
+        // The file's channels (HALF, FLOAT or UINT) are converted to float by
+        // OpenEXR; a channel absent from the file is filled with fillValue.
+        const std::size_t xStride = 4 * sizeof(float);
+        const std::size_t yStride = xStride * static_cast<std::size_t>(width);
+        Imf::FrameBuffer frameBuffer;
+        for (int c = 0; c < 4; ++c) {
+            const double fill = c == 3 ? 1.0 : 0.0;
+            frameBuffer.insert(kChannelNames[c],
+                               Imf::Slice::Make(Imf::FLOAT, image.rgba.data() + c, window, xStride,
+                                                yStride, 1, 1, fill));
+        }
+        file.setFrameBuffer(frameBuffer);
+        file.readPixels(window.min.y, window.max.y);
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::bad_alloc&) {
+        throw InputError("cannot read " + path.string() + ": image too large for memory");
+    } catch (const std::exception& e) {
+        throw InputError("cannot read EXR " + path.string() + ": " + e.what());
+    }
+    return image;
+}
+
+std::string readExrStringAttribute(const fs::path& path, const std::string& name) {
+    try {
+        // Opening reads the header and the offset table only, not the pixels.
+        Imf::InputFile file(path.c_str());
+        const auto* attribute = file.header().findTypedAttribute<Imf::StringAttribute>(name);
+        return attribute ? attribute->value() : std::string();
+    } catch (const std::exception& e) {
+        throw InputError("cannot read EXR " + path.string() + ": " + e.what());
+    }
+}
+
+} // namespace cutaway

@@ -1,0 +1,202 @@
+#include "io/png.hpp"
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+#include <zlib.h>
+
+namespace cutaway {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Bytes = std::vector<std::uint8_t>;
+
+// IDAT payloads are split so each chunk stays far below PNG's 2^31-1 chunk
+// limit and zlib's 32-bit crc32() length.
+constexpr std::size_t kIdatChunkBytes = 1u << 20;
+
+void appendU32(Bytes& out, std::uint32_t v) { // PNG integers are big-endian
+    out.push_back(static_cast<std::uint8_t>(v >> 24));
+    out.push_back(static_cast<std::uint8_t>(v >> 16));
+    out.push_back(static_cast<std::uint8_t>(v >> 8));
+    out.push_back(static_cast<std::uint8_t>(v));
+}
+
+// length, type, data, CRC-32 over type and data.
+void appendChunk(Bytes& out, const char type[4], const std::uint8_t* data, std::size_t size) {
+    appendU32(out, static_cast<std::uint32_t>(size));
+    const std::size_t typeAt = out.size();
+    out.insert(out.end(), type, type + 4);
+    out.insert(out.end(), data, data + size);
+    const uLong crc = crc32(0L, out.data() + typeAt, static_cast<uInt>(size + 4));
+    appendU32(out, static_cast<std::uint32_t>(crc));
+}
+
+void appendChunk(Bytes& out, const char type[4], const Bytes& data) {
+    appendChunk(out, type, data.data(), data.size());
+}
+
+// [0,1] -> 0..255, NaN -> 0.
+std::uint8_t toByte(float v) {
+    if (!(v > 0.0f)) return 0;
+    if (v >= 1.0f) return 255;
+    return static_cast<std::uint8_t>(std::lround(v * 255.0f));
+}
+
+// Linear premultiplied RGBA -> 8-bit straight (un-premultiplied) sRGB colour
+// with linear alpha, as PNG defines it.
+void encodePixel(const float* in, std::uint8_t* out) {
+    float a = in[3];
+    if (!(a > 0.0f)) a = 0.0f; // also NaN
+    a = std::min(a, 1.0f);
+    for (int c = 0; c < 3; ++c) {
+        const float straight = a > 0.0f ? in[c] / a : 0.0f;
+        out[c] = toByte(linearToSrgb(straight));
+    }
+    out[3] = toByte(a);
+}
+
+int paeth(int a, int b, int c) {
+    const int p = a + b - c;
+    const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+    if (pa <= pb && pa <= pc) return a;
+    return pb <= pc ? b : c;
+}
+
+// Filters one scanline with each of PNG's five filters and keeps the one with
+// the smallest sum of absolute (signed) residuals, the heuristic the PNG spec
+// recommends; it compresses smooth renders far better than filter 0 alone.
+// `prev` is the previous raw row (all zero for the first row); bpp = 4.
+// `candidates` is scratch space reused across rows.
+void filterRow(const std::uint8_t* row, const std::uint8_t* prev, std::size_t n,
+               std::array<Bytes, 5>& candidates, Bytes& out) {
+    constexpr std::size_t bpp = 4;
+    std::array<std::uint64_t, 5> cost{};
+    for (int f = 0; f < 5; ++f) {
+        Bytes& line = candidates[f];
+        line.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const int left = i >= bpp ? row[i - bpp] : 0;
+            const int up = prev[i];
+            const int upLeft = i >= bpp ? prev[i - bpp] : 0;
+            int predictor = 0;
+            switch (f) {
+            case 1:
+                predictor = left;
+                break;
+            case 2:
+                predictor = up;
+                break;
+            case 3:
+                predictor = (left + up) / 2;
+                break;
+            case 4:
+                predictor = paeth(left, up, upLeft);
+                break;
+            default:
+                break;
+            }
+            const auto residual = static_cast<std::uint8_t>(row[i] - predictor);
+            line[i] = residual;
+            cost[f] += static_cast<std::uint64_t>(std::abs(static_cast<std::int8_t>(residual)));
+        }
+    }
+    const auto best =
+        static_cast<std::size_t>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+    out.push_back(static_cast<std::uint8_t>(best));
+    out.insert(out.end(), candidates[best].begin(), candidates[best].end());
+}
+
+Bytes encodePng(const fs::path& path, const Image& image) {
+    const auto width = static_cast<std::size_t>(image.width);
+    const auto height = static_cast<std::size_t>(image.height);
+    const std::size_t rowBytes = width * 4;
+
+    Bytes filtered;
+    filtered.reserve((rowBytes + 1) * height);
+    Bytes row(rowBytes), prev(rowBytes, 0);
+    std::array<Bytes, 5> candidates;
+    for (std::size_t y = 0; y < height; ++y) {
+        const float* src = image.rgba.data() + y * rowBytes;
+        for (std::size_t x = 0; x < width; ++x)
+            encodePixel(src + x * 4, row.data() + x * 4);
+        filterRow(row.data(), prev.data(), rowBytes, candidates, filtered);
+        std::swap(row, prev);
+    }
+
+    uLongf compressedSize = compressBound(static_cast<uLong>(filtered.size()));
+    Bytes compressed(compressedSize);
+    const int status = compress2(compressed.data(), &compressedSize, filtered.data(),
+                                 static_cast<uLong>(filtered.size()), Z_DEFAULT_COMPRESSION);
+    if (status != Z_OK) {
+        throw RuntimeError("cannot write " + path.string() + ": zlib compress2 failed (" +
+                           std::to_string(status) + ")");
+    }
+
+    Bytes png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    Bytes ihdr;
+    appendU32(ihdr, static_cast<std::uint32_t>(image.width));
+    appendU32(ihdr, static_cast<std::uint32_t>(image.height));
+    ihdr.insert(ihdr.end(), {8, 6, 0, 0, 0}); // 8 bit, RGBA, deflate, adaptive, no interlace
+    appendChunk(png, "IHDR", ihdr);
+    appendChunk(png, "sRGB", Bytes{0}); // rendering intent 0: perceptual
+    // gAMA and cHRM matching sRGB, for decoders that ignore sRGB (PNG spec 11.3.3.5).
+    Bytes gama;
+    appendU32(gama, 45455);
+    appendChunk(png, "gAMA", gama);
+    Bytes chrm;
+    for (std::uint32_t v : {31270u, 32900u, 64000u, 33000u, 30000u, 60000u, 15000u, 6000u}) {
+        appendU32(chrm, v);
+    }
+    appendChunk(png, "cHRM", chrm);
+    for (std::size_t at = 0; at < compressedSize; at += kIdatChunkBytes) {
+        const std::size_t size = std::min<std::size_t>(kIdatChunkBytes, compressedSize - at);
+        appendChunk(png, "IDAT", compressed.data() + at, size);
+    }
+    appendChunk(png, "IEND", nullptr, 0);
+    return png;
+}
+
+} // namespace
+
+float linearToSrgb(float linear) {
+    if (!(linear > 0.0f)) return 0.0f; // also NaN
+    if (linear >= 1.0f) return 1.0f;
+    if (linear <= 0.0031308f) return 12.92f * linear;
+    return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+void writePng(const fs::path& path, const Image& image) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
+        throw RuntimeError("cannot write " + path.string() + ": image is " +
+                           std::to_string(image.width) + "x" + std::to_string(image.height) +
+                           " but holds " + std::to_string(image.rgba.size()) + " floats");
+    }
+    const Bytes png = encodePng(path, image);
+    writeAtomically(path, [&](const fs::path& tmp) {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (out) {
+            out.write(reinterpret_cast<const char*>(png.data()),
+                      static_cast<std::streamsize>(png.size()));
+            out.close();
+        }
+        if (!out) {
+            const int err = errno;
+            throw RuntimeError("cannot write " + path.string() + " (" + std::strerror(err) + ")");
+        }
+    });
+}
+
+} // namespace cutaway

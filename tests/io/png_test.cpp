@@ -1,0 +1,240 @@
+#include "core/error.hpp"
+#include "io/png.hpp"
+#include "temp_dir.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <iterator>
+#include <string>
+#include <vector>
+#include <zlib.h>
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+using Bytes = std::vector<std::uint8_t>;
+
+std::uint32_t be32(const std::uint8_t* p) {
+    return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
+}
+
+// An independent decoder for what writePng may produce: 8-bit RGBA,
+// non-interlaced, any of the five filters. Fails the test on any violation.
+struct Decoded {
+    int width = 0, height = 0;
+    std::vector<std::string> chunkTypes;
+    std::vector<std::uint8_t> srgb; ///< sRGB chunk payload
+    Bytes rgba;                     ///< width * height * 4
+    const std::uint8_t* pixel(int x, int y) const {
+        return &rgba[(std::size_t(y) * width + x) * 4];
+    }
+};
+
+int paeth(int a, int b, int c) {
+    const int p = a + b - c;
+    const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+    if (pa <= pb && pa <= pc) return a;
+    return pb <= pc ? b : c;
+}
+
+void decode(const fs::path& path, Decoded& out) {
+    std::ifstream in(path, std::ios::binary);
+    const Bytes file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const Bytes signature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    ASSERT_GE(file.size(), signature.size());
+    ASSERT_TRUE(std::equal(signature.begin(), signature.end(), file.begin()));
+
+    Bytes idat;
+    std::size_t at = signature.size();
+    while (at < file.size()) {
+        ASSERT_LE(at + 12, file.size()) << "truncated chunk";
+        const std::uint32_t length = be32(&file[at]);
+        ASSERT_LE(at + 12 + length, file.size());
+        const std::string type(reinterpret_cast<const char*>(&file[at + 4]), 4);
+        const std::uint8_t* data = &file[at + 8];
+        const uLong crc = crc32(0L, &file[at + 4], length + 4);
+        ASSERT_EQ(be32(data + length), static_cast<std::uint32_t>(crc)) << "CRC of " << type;
+        out.chunkTypes.push_back(type);
+        if (type == "IHDR") {
+            ASSERT_EQ(length, 13u);
+            out.width = static_cast<int>(be32(data));
+            out.height = static_cast<int>(be32(data + 4));
+            EXPECT_EQ(data[8], 8) << "bit depth";
+            EXPECT_EQ(data[9], 6) << "colour type RGBA";
+            EXPECT_EQ(data[10], 0) << "compression";
+            EXPECT_EQ(data[11], 0) << "filter method";
+            EXPECT_EQ(data[12], 0) << "interlace";
+        } else if (type == "sRGB") {
+            out.srgb.assign(data, data + length);
+        } else if (type == "IDAT") {
+            idat.insert(idat.end(), data, data + length);
+        }
+        at += 12 + length;
+    }
+    ASSERT_FALSE(out.chunkTypes.empty());
+    EXPECT_EQ(out.chunkTypes.front(), "IHDR");
+    EXPECT_EQ(out.chunkTypes.back(), "IEND");
+    ASSERT_GT(out.width, 0);
+    ASSERT_GT(out.height, 0);
+
+    const std::size_t rowBytes = std::size_t(out.width) * 4;
+    Bytes raw((rowBytes + 1) * out.height);
+    uLongf rawSize = static_cast<uLongf>(raw.size());
+    ASSERT_EQ(uncompress(raw.data(), &rawSize, idat.data(), static_cast<uLong>(idat.size())), Z_OK);
+    ASSERT_EQ(rawSize, raw.size());
+
+    out.rgba.assign(rowBytes * out.height, 0);
+    for (int y = 0; y < out.height; ++y) {
+        const std::uint8_t filter = raw[y * (rowBytes + 1)];
+        ASSERT_LE(filter, 4) << "row " << y;
+        const std::uint8_t* src = &raw[y * (rowBytes + 1) + 1];
+        std::uint8_t* row = &out.rgba[y * rowBytes];
+        const std::uint8_t* prev = y > 0 ? row - rowBytes : nullptr;
+        for (std::size_t i = 0; i < rowBytes; ++i) {
+            const int a = i >= 4 ? row[i - 4] : 0;
+            const int b = prev ? prev[i] : 0;
+            const int c = prev && i >= 4 ? prev[i - 4] : 0;
+            const int predictor = filter == 1   ? a
+                                  : filter == 2 ? b
+                                  : filter == 3 ? (a + b) / 2
+                                  : filter == 4 ? paeth(a, b, c)
+                                                : 0;
+            row[i] = static_cast<std::uint8_t>(src[i] + predictor);
+        }
+    }
+}
+
+void setPixel(Image& image, int x, int y, float r, float g, float b, float a) {
+    float* p = image.pixel(x, y);
+    p[0] = r, p[1] = g, p[2] = b, p[3] = a;
+}
+
+TEST(Png, LinearToSrgbCurve) {
+    EXPECT_EQ(linearToSrgb(0.0f), 0.0f);
+    EXPECT_FLOAT_EQ(linearToSrgb(1.0f), 1.0f);
+    EXPECT_NEAR(linearToSrgb(0.5f), 0.735357f, 1e-5f);
+    EXPECT_NEAR(linearToSrgb(0.18f), 0.461356f, 1e-5f);
+    // Continuous at the knee between the linear and the power segment.
+    const float knee = 0.0031308f;
+    EXPECT_NEAR(linearToSrgb(std::nextafter(knee, 0.0f)), linearToSrgb(knee), 1e-5f);
+    EXPECT_NEAR(linearToSrgb(std::nextafter(knee, 1.0f)), linearToSrgb(knee), 1e-5f);
+    EXPECT_NEAR(linearToSrgb(knee), 12.92f * knee, 1e-6f);
+    // Strictly increasing over [0,1].
+    float previous = -1.0f;
+    for (int i = 0; i <= 10000; ++i) {
+        const float v = linearToSrgb(static_cast<float>(i) / 10000.0f);
+        ASSERT_GT(v, previous) << "at " << i;
+        previous = v;
+    }
+    // Clamped outside [0,1].
+    EXPECT_EQ(linearToSrgb(-1.0f), 0.0f);
+    EXPECT_EQ(linearToSrgb(4.0f), 1.0f);
+    EXPECT_EQ(linearToSrgb(std::nanf("")), 0.0f);
+}
+
+TEST(Png, EncodesColourAndAlpha) {
+    TempDir dir;
+    Image image(5, 3);
+    setPixel(image, 0, 0, 0.5f, 0.5f, 0.5f, 1.0f);    // opaque linear grey
+    setPixel(image, 1, 0, 0.25f, 0.25f, 0.25f, 0.5f); // same grey, premultiplied by 0.5
+    setPixel(image, 2, 0, 0.0f, 0.0f, 0.0f, 0.0f);    // transparent
+    setPixel(image, 3, 0, 1.0f, 0.0f, 0.0f, 1.0f);    // pure red
+    setPixel(image, 4, 0, 8.0f, -1.0f, 0.5f, 2.0f);   // out of range: clamped
+    setPixel(image, 0, 2, 0.001f, 0.0f, 0.0f, 1.0f);  // below the knee: 12.92 * 0.001
+    setPixel(image, 4, 2, 0.2f, 0.4f, 0.6f, 1.0f);    // bottom-right corner
+    const fs::path path = dir / "out.png";
+    writePng(path, image);
+    EXPECT_EQ(dir.list(), std::vector<std::string>{"out.png"});
+
+    Decoded png;
+    ASSERT_NO_FATAL_FAILURE(decode(path, png));
+    ASSERT_EQ(png.width, 5);
+    ASSERT_EQ(png.height, 3);
+    EXPECT_EQ(png.srgb, std::vector<std::uint8_t>{0}) << "sRGB chunk, perceptual intent";
+
+    auto expectPixel = [&](int x, int y, int r, int g, int b, int a) {
+        const std::uint8_t* p = png.pixel(x, y);
+        EXPECT_NEAR(p[0], r, 1) << x << "," << y;
+        EXPECT_NEAR(p[1], g, 1) << x << "," << y;
+        EXPECT_NEAR(p[2], b, 1) << x << "," << y;
+        EXPECT_NEAR(p[3], a, 1) << x << "," << y;
+    };
+    expectPixel(0, 0, 188, 188, 188, 255);
+    expectPixel(1, 0, 188, 188, 188, 128);
+    EXPECT_EQ(png.pixel(2, 0)[3], 0);
+    expectPixel(3, 0, 255, 0, 0, 255);
+    // 8/2 -> 1 clamped: 255; -1 -> 0; 0.5/1 -> 188; alpha 2 -> 1.
+    expectPixel(4, 0, 255, 0, 188, 255);
+    expectPixel(0, 2, 3, 0, 0, 255); // 12.92 * 0.001 * 255 = 3.3
+    expectPixel(4, 2, 124, 170, 203, 255);
+    expectPixel(2, 1, 0, 0, 0, 0);
+}
+
+TEST(Png, LargerImageRoundTripsThroughAllFilters) {
+    // A gradient plus noise makes the encoder use more than one filter; the
+    // decoder checks every pixel against the expected 8-bit value.
+    TempDir dir;
+    const int width = 97, height = 61;
+    Image image(width, height);
+    std::uint32_t state = 12345;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            state = state * 1664525u + 1013904223u;
+            const float noise = static_cast<float>(state >> 24) / 255.0f;
+            const float a = y < height / 2 ? 1.0f : noise;
+            setPixel(image, x, y, a * float(x) / width, a * float(y) / height, a * noise, a);
+        }
+    }
+    const fs::path path = dir / "big.png";
+    writePng(path, image);
+    Decoded png;
+    ASSERT_NO_FATAL_FAILURE(decode(path, png));
+    ASSERT_EQ(png.width, width);
+    ASSERT_EQ(png.height, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const float* in = image.pixel(x, y);
+            const std::uint8_t* p = png.pixel(x, y);
+            const float a = in[3];
+            ASSERT_NEAR(p[3], a * 255.0f, 0.51f) << x << "," << y;
+            if (a < 1.0f / 255.0f) continue;
+            for (int c = 0; c < 3; ++c) {
+                const float expected = 255.0f * linearToSrgb(in[c] / a);
+                ASSERT_NEAR(p[c], expected, 0.51f) << x << "," << y << " channel " << c;
+            }
+        }
+    }
+}
+
+TEST(Png, ReplacesAnExistingFile) {
+    TempDir dir;
+    const fs::path path = dir / "frame.png";
+    std::ofstream(path) << "stale";
+    Image image(1, 1);
+    setPixel(image, 0, 0, 1.0f, 1.0f, 1.0f, 1.0f);
+    writePng(path, image);
+    Decoded png;
+    ASSERT_NO_FATAL_FAILURE(decode(path, png));
+    EXPECT_EQ(png.pixel(0, 0)[0], 255);
+    EXPECT_EQ(dir.list(), std::vector<std::string>{"frame.png"});
+}
+
+TEST(Png, WriteIntoMissingFolderIsRuntimeError) {
+    TempDir dir;
+    const fs::path folder = dir / "absent";
+    try {
+        writePng(folder / "out.png", Image(2, 2));
+        FAIL() << "expected RuntimeError";
+    } catch (const RuntimeError& e) {
+        EXPECT_NE(std::string(e.what()).find(folder.string()), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(dir.list().empty());
+}
+
+} // namespace
+} // namespace cutaway
