@@ -1,0 +1,35 @@
+#include "bake/volume_upload.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace cutaway::bake {
+
+std::vector<uint16_t> normalizeVolume(const Volume& volume, ValueWindow window) {
+    const std::size_t n = volume.voxelCount();
+    std::vector<uint16_t> texels(n);
+    const double scale = window.hi > window.lo ? 1.0 / (window.hi - window.lo) : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        double t = (volume.value(i) - window.lo) * scale;
+        if (!(t > 0.0)) t = 0.0; // also maps NaN to 0
+        texels[i] = static_cast<uint16_t>(std::lround(std::min(t, 1.0) * 65535.0));
+    }
+    return texels;
+}
+
+gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window) {
+    std::vector<uint16_t> texels = normalizeVolume(volume, window);
+    VkExtent3D extent{static_cast<uint32_t>(volume.dims.x), static_cast<uint32_t>(volume.dims.y),
+                      static_cast<uint32_t>(volume.dims.z)};
+    gpu::Image image =
+        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16_UNORM, extent,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    gpu::uploadImage(ctx, image, texels.data(), texels.size() * sizeof(uint16_t),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    return image;
+}
+
+} // namespace cutaway::bake

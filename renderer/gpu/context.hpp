@@ -1,0 +1,90 @@
+#pragma once
+// A headless Vulkan 1.3 context: instance, one device, one queue that does
+// graphics and compute, a command pool. No surface, no swapchain.
+//
+// Device choice: the first device that can run cutaway, preferring discrete
+// GPUs, then integrated, virtual, and last CPU implementations (lavapipe).
+// ContextOptions::deviceName picks by case-insensitive substring instead.
+// When nothing fits, the error lists every device with the reason it was
+// rejected.
+//
+// Validation: with the Khronos validation layer on (ContextOptions::validation,
+// or CUTAWAY_VALIDATION=1 in the environment), every warning or error message
+// is printed to stderr and counted; tests fail when the count is not zero.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/handle.hpp"
+
+namespace cutaway::gpu {
+
+struct ContextOptions {
+    bool validation = false; ///< also switched on by CUTAWAY_VALIDATION=1
+    std::string deviceName;  ///< substring of the device name; empty = best device
+};
+
+/// What the device supports among the formats cutaway uses.
+struct DeviceFormats {
+    VkFormat color = VK_FORMAT_UNDEFINED;        ///< accumulation target: RGBA32F, else RGBA16F
+    VkFormat depthStencil = VK_FORMAT_UNDEFINED; ///< D32S8, else D24S8
+};
+
+class Context {
+public:
+    explicit Context(const ContextOptions& options = {});
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkInstance instance() const { return m_instance; }
+    VkPhysicalDevice physicalDevice() const { return m_physicalDevice; }
+    VkDevice device() const { return m_device; }
+    VkQueue queue() const { return m_queue; }
+    uint32_t queueFamily() const { return m_queueFamily; }
+    const VkPhysicalDeviceProperties& properties() const { return m_properties; }
+    const DeviceFormats& formats() const { return m_formats; }
+    std::string deviceName() const { return m_properties.deviceName; }
+    bool validationEnabled() const { return m_validation; }
+
+    /// Index of a memory type allowed by `typeBits` that has `flags`; throws if none.
+    uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
+
+    /// Records commands into a fresh primary command buffer, submits it and
+    /// waits for it to finish.
+    void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+    /// Validation messages (warnings and errors) seen so far.
+    std::vector<std::string> validationMessages() const;
+    std::size_t validationMessageCount() const;
+
+    /// Called by the debug messenger; public only for the C callback.
+    void onValidationMessage(const std::string& message);
+
+private:
+    void release() noexcept;
+
+    bool m_validation = false;
+    VkInstance m_instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT m_messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice m_physicalDevice = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties m_properties{};
+    VkPhysicalDeviceMemoryProperties m_memory{};
+    DeviceFormats m_formats;
+    uint32_t m_queueFamily = 0;
+    VkDevice m_device = VK_NULL_HANDLE;
+    VkQueue m_queue = VK_NULL_HANDLE;
+    CommandPoolHandle m_commandPool;
+    mutable std::mutex m_messagesMutex;
+    std::vector<std::string> m_messages;
+};
+
+/// Names and types of the Vulkan devices present, for `--device` help and errors.
+std::vector<std::string> listDevices();
+
+} // namespace cutaway::gpu

@@ -1,0 +1,25 @@
+#pragma once
+// Picks the physical device; separate from context.cpp so the rules are easy to read.
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/context.hpp"
+
+namespace cutaway::gpu {
+
+struct DeviceChoice {
+    VkPhysicalDevice device = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    DeviceFormats formats;
+};
+
+/// Returns the best device that has everything cutaway needs; throws
+/// RuntimeError listing each device and why it was rejected.
+DeviceChoice chooseDevice(VkInstance instance, const std::string& wanted);
+
+/// "NAME (TYPE, Vulkan X.Y)"
+std::string describeDevice(VkPhysicalDevice device);
+
+} // namespace cutaway::gpu

@@ -1,0 +1,96 @@
+#include "gpu/pipeline.hpp"
+
+#include "gpu/check.hpp"
+
+namespace cutaway::gpu {
+
+ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words,
+                                      std::size_t bytes) {
+    VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    info.codeSize = bytes;
+    info.pCode = words;
+    VkShaderModule module = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
+    return ShaderModuleHandle(ctx.device(), module);
+}
+
+DescriptorSetLayoutHandle createSetLayout(const Context& ctx,
+                                          const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+    VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    info.bindingCount = static_cast<uint32_t>(bindings.size());
+    info.pBindings = bindings.data();
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &info, nullptr, &layout));
+    return DescriptorSetLayoutHandle(ctx.device(), layout);
+}
+
+PipelineLayoutHandle createPipelineLayout(const Context& ctx, VkDescriptorSetLayout setLayout,
+                                          uint32_t pushConstantBytes, VkShaderStageFlags pushStages) {
+    VkPushConstantRange range{pushStages, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    info.setLayoutCount = 1;
+    info.pSetLayouts = &setLayout;
+    info.pushConstantRangeCount = pushConstantBytes ? 1u : 0u;
+    info.pPushConstantRanges = pushConstantBytes ? &range : nullptr;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VK_CHECK(vkCreatePipelineLayout(ctx.device(), &info, nullptr, &layout));
+    return PipelineLayoutHandle(ctx.device(), layout);
+}
+
+PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
+                                     VkShaderModule module) {
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    return PipelineHandle(ctx.device(), pipeline);
+}
+
+DescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorSetLayout layout,
+                                    const std::vector<VkDescriptorPoolSize>& sizes) {
+    DescriptorSet result;
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    poolInfo.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+    result.pool = DescriptorPoolHandle(ctx.device(), pool);
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &layout;
+    VK_CHECK(vkAllocateDescriptorSets(ctx.device(), &alloc, &result.set));
+    return result;
+}
+
+void writeImageDescriptor(const Context& ctx, VkDescriptorSet set, uint32_t binding,
+                          VkDescriptorType type, VkImageView view, VkImageLayout layout,
+                          VkSampler sampler) {
+    VkDescriptorImageInfo image{sampler, view, layout};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = type;
+    write.pImageInfo = &image;
+    vkUpdateDescriptorSets(ctx.device(), 1, &write, 0, nullptr);
+}
+
+void writeBufferDescriptor(const Context& ctx, VkDescriptorSet set, uint32_t binding,
+                           VkDescriptorType type, VkBuffer buffer, VkDeviceSize size) {
+    VkDescriptorBufferInfo info{buffer, 0, size};
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = type;
+    write.pBufferInfo = &info;
+    vkUpdateDescriptorSets(ctx.device(), 1, &write, 0, nullptr);
+}
+
+} // namespace cutaway::gpu

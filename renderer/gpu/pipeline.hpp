@@ -1,0 +1,44 @@
+#pragma once
+// Small builders for the few pipelines cutaway has: shader modules from
+// embedded SPIR-V, descriptor set layouts from a list of bindings, compute
+// pipelines. The graphics pipeline lives with the renderer that uses it.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/context.hpp"
+#include "gpu/handle.hpp"
+
+namespace cutaway::gpu {
+
+/// `words` points at SPIR-V as generated into NAME_STAGE.spv.h.
+ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words,
+                                      std::size_t bytes);
+
+DescriptorSetLayoutHandle createSetLayout(const Context& ctx,
+                                          const std::vector<VkDescriptorSetLayoutBinding>& bindings);
+
+PipelineLayoutHandle createPipelineLayout(const Context& ctx, VkDescriptorSetLayout setLayout,
+                                          uint32_t pushConstantBytes, VkShaderStageFlags pushStages);
+
+PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
+                                     VkShaderModule module);
+
+/// A pool sized for `sets` sets of the given descriptor counts, and one set from it.
+struct DescriptorSet {
+    DescriptorPoolHandle pool;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+};
+DescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorSetLayout layout,
+                                    const std::vector<VkDescriptorPoolSize>& sizes);
+
+/// Writes one image descriptor (combined sampler or storage image).
+void writeImageDescriptor(const Context& ctx, VkDescriptorSet set, uint32_t binding,
+                          VkDescriptorType type, VkImageView view, VkImageLayout layout,
+                          VkSampler sampler = VK_NULL_HANDLE);
+void writeBufferDescriptor(const Context& ctx, VkDescriptorSet set, uint32_t binding,
+                           VkDescriptorType type, VkBuffer buffer, VkDeviceSize size);
+
+} // namespace cutaway::gpu

@@ -1,0 +1,144 @@
+#include "gpu/resources.hpp"
+
+#include <cstring>
+
+#include "core/error.hpp"
+#include "gpu/check.hpp"
+
+namespace cutaway::gpu {
+namespace {
+
+MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req,
+                      VkMemoryPropertyFlags flags) {
+    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    info.allocationSize = req.size;
+    info.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, flags);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VK_CHECK(vkAllocateMemory(ctx.device(), &info, nullptr, &memory));
+    return MemoryHandle(ctx.device(), memory);
+}
+
+} // namespace
+
+Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                    bool hostVisible) {
+    Buffer b;
+    b.size = size;
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = size;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateBuffer(ctx.device(), &info, nullptr, &buffer));
+    b.buffer = BufferHandle(ctx.device(), buffer);
+
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(ctx.device(), buffer, &req);
+    b.memory = allocate(ctx, req,
+                        hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                          VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                    : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VK_CHECK(vkBindBufferMemory(ctx.device(), buffer, b.memory.get(), 0));
+    if (hostVisible) VK_CHECK(vkMapMemory(ctx.device(), b.memory.get(), 0, size, 0, &b.mapped));
+    return b;
+}
+
+Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
+                  VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+    const auto& limits = ctx.properties().limits;
+    const uint32_t maxDim = type == VK_IMAGE_TYPE_3D ? limits.maxImageDimension3D
+                                                     : limits.maxImageDimension2D;
+    if (extent.width > maxDim || extent.height > maxDim || extent.depth > maxDim)
+        throw RuntimeError("image of " + std::to_string(extent.width) + "x" +
+                           std::to_string(extent.height) + "x" + std::to_string(extent.depth) +
+                           " exceeds the device limit of " + std::to_string(maxDim) +
+                           " texels per side (" + ctx.deviceName() + ")");
+    Image img;
+    img.format = format;
+    img.extent = extent;
+    img.aspect = aspect;
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = type;
+    info.format = format;
+    info.extent = extent;
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImage image = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateImage(ctx.device(), &info, nullptr, &image));
+    img.image = ImageHandle(ctx.device(), image);
+
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(ctx.device(), image, &req);
+    img.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VK_CHECK(vkBindImageMemory(ctx.device(), image, img.memory.get(), 0));
+
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image;
+    viewInfo.viewType = type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = format;
+    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateImageView(ctx.device(), &viewInfo, nullptr, &view));
+    img.view = ImageViewHandle(ctx.device(), view);
+    return img;
+}
+
+void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to,
+                VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = srcStage;
+    barrier.srcAccessMask = srcAccess;
+    barrier.dstStageMask = dstStage;
+    barrier.dstAccessMask = dstAccess;
+    barrier.oldLayout = from;
+    barrier.newLayout = to;
+    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image.image.get();
+    barrier.subresourceRange = {image.aspect, 0, 1, 0, 1};
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = 1;
+    dep.pImageMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,
+                 VkImageLayout finalLayout, VkPipelineStageFlags2 dstStage) {
+    Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    std::memcpy(staging.mapped, data, bytes);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        transition(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
+                   VK_ACCESS_2_TRANSFER_WRITE_BIT);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {image.aspect, 0, 0, 1};
+        region.imageExtent = image.extent;
+        vkCmdCopyBufferToImage(cmd, staging.buffer.get(), image.image.get(),
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        transition(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout,
+                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstStage,
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+    });
+}
+
+SamplerHandle createLinearSampler(const Context& ctx) {
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = VK_FILTER_LINEAR;
+    info.minFilter = VK_FILTER_LINEAR;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.maxLod = 0.0f;
+    VkSampler sampler = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
+    return SamplerHandle(ctx.device(), sampler);
+}
+
+} // namespace cutaway::gpu

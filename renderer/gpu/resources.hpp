@@ -1,0 +1,51 @@
+#pragma once
+// Buffers and images with their own memory (one dedicated allocation each:
+// cutaway holds a handful of large resources, so a sub-allocator would buy
+// nothing), uploads through a staging buffer, and layout transitions.
+#include <cstddef>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/context.hpp"
+#include "gpu/handle.hpp"
+
+namespace cutaway::gpu {
+
+struct Buffer {
+    BufferHandle buffer;
+    MemoryHandle memory;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr; ///< persistent mapping for host-visible buffers, else null
+};
+
+/// hostVisible: HOST_VISIBLE | HOST_COHERENT and mapped; otherwise DEVICE_LOCAL.
+Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
+                    bool hostVisible);
+
+struct Image {
+    ImageHandle image;
+    MemoryHandle memory;
+    ImageViewHandle view;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkExtent3D extent{0, 0, 0};
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+};
+
+/// A device-local image of type 2D (extent.depth == 1) or 3D, with a view.
+Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
+                  VkImageUsageFlags usage, VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
+
+/// Records a layout transition with a full-image barrier (synchronization2).
+void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to,
+                VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
+/// Copies tightly packed texels into the whole image and leaves it in
+/// `finalLayout`, readable by `dstStage`. Blocks until done.
+void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,
+                 VkImageLayout finalLayout, VkPipelineStageFlags2 dstStage);
+
+/// A linear-filtering, clamp-to-edge sampler.
+SamplerHandle createLinearSampler(const Context& ctx);
+
+} // namespace cutaway::gpu

@@ -1,0 +1,67 @@
+#include "render/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace cutaway::render {
+
+glm::dvec3 orbitDirection(double azimuthDeg, double elevationDeg, glm::dvec3 up) {
+    const glm::dvec3 w = glm::normalize(up);
+    // A reference axis not parallel to up gives the frame (e1, e2, w); for up = +z
+    // this is exactly (x, y, z).
+    glm::dvec3 a = std::abs(w.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    glm::dvec3 e1 = glm::normalize(a - glm::dot(a, w) * w);
+    glm::dvec3 e2 = glm::cross(w, e1);
+    const double az = glm::radians(azimuthDeg), el = glm::radians(elevationDeg);
+    return std::cos(el) * std::sin(az) * e1 - std::cos(el) * std::cos(az) * e2 + std::sin(el) * w;
+}
+
+CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width, int height) {
+    CameraMatrices m;
+    const double aspect = static_cast<double>(width) / static_cast<double>(height);
+    const double radius = std::max(bounds.radius(), 1e-6);
+    const double fovY = glm::radians(camera.fovDeg);
+    // The narrower of the two fields of view must hold the bounding sphere.
+    const double fovX = 2.0 * std::atan(std::tan(fovY / 2.0) * aspect);
+    const double fitDistance = radius / std::sin(std::min(fovX, fovY) / 2.0) * 1.05;
+
+    glm::dvec3 target, eye, up;
+    if (camera.useOrbit) {
+        target = camera.target;
+        up = camera.up;
+        double distance = camera.distance > 0.0 ? camera.distance : fitDistance;
+        if (camera.projection == Projection::Orthographic && camera.distance <= 0.0)
+            distance = 3.0 * radius;
+        eye = target + distance * orbitDirection(camera.azimuthDeg, camera.elevationDeg, up);
+    } else {
+        target = camera.target;
+        eye = camera.eye;
+        up = camera.up;
+    }
+    m.perspective = camera.projection == Projection::Perspective;
+    m.eye = eye;
+    m.forward = glm::normalize(target - eye);
+    m.view = glm::lookAt(eye, target, up);
+
+    // Depth range from the bounding sphere seen from the eye; slices carry no
+    // depth yet, the planes only bound what is drawn.
+    const double centreDepth = glm::dot(bounds.centre() - eye, m.forward);
+    double farPlane = std::max(centreDepth + 1.5 * radius, 1.0);
+    if (m.perspective) {
+        m.nearPlane = std::max(centreDepth - 1.5 * radius, farPlane * 1e-3);
+        m.proj = glm::perspective(fovY, aspect, m.nearPlane, farPlane);
+    } else {
+        m.nearPlane = centreDepth - 1.5 * radius; // may be negative: ortho sees behind the eye
+        const double h = camera.orthoHeight > 0.0 ? camera.orthoHeight
+                                                  : 2.0 * radius * std::max(1.0, 1.0 / aspect);
+        const double w = h * aspect;
+        m.proj = glm::ortho(-w / 2, w / 2, -h / 2, h / 2, m.nearPlane, farPlane);
+    }
+    m.proj[1][1] *= -1.0; // Vulkan's clip y points down: keep world up at the top of the image
+    m.viewProj = m.proj * m.view;
+    return m;
+}
+
+} // namespace cutaway::render

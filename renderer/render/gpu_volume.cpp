@@ -1,0 +1,29 @@
+#include "render/gpu_volume.hpp"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace cutaway::render {
+
+glm::dmat4 GpuVolume::worldToTexture() const {
+    const glm::dvec3 extent = box.hi - box.lo;
+    return glm::scale(glm::dmat4(1.0), 1.0 / extent) * glm::translate(glm::dmat4(1.0), -box.lo);
+}
+
+double GpuVolume::smallestSpacing() const { return std::min({spacing.x, spacing.y, spacing.z}); }
+
+GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,
+                        const Volume& volume, bake::ValueWindow window) {
+    GpuVolume gv;
+    gv.dims = volume.dims;
+    gv.spacing = volume.spacing;
+    gv.window = window;
+    const glm::dvec3 half = 0.5 * volume.extent();
+    gv.box = Box{-half, half};
+    gv.values = bake::uploadVolume(ctx, volume, window);
+    gv.gradients = baker.bake(gv.values, volume.spacing);
+    return gv;
+}
+
+} // namespace cutaway::render

@@ -1,0 +1,32 @@
+#pragma once
+// A volume as the renderer samples it: the value texture (uploaded once) and
+// its baked gradients, with the geometry that maps world space onto them.
+// Made once per sequence; frames only read it.
+#include <glm/glm.hpp>
+
+#include "bake/gradient_bake.hpp"
+#include "bake/volume_upload.hpp"
+#include "gpu/resources.hpp"
+#include "render/camera.hpp"
+#include "volume/volume.hpp"
+
+namespace cutaway::render {
+
+struct GpuVolume {
+    gpu::Image values;
+    gpu::Image gradients;
+    glm::ivec3 dims{0};
+    glm::dvec3 spacing{1.0};
+    bake::ValueWindow window;
+    Box box; ///< world space: centred on the origin, extent dims * spacing
+
+    /// World (mm) -> texture coordinates [0,1]^3.
+    glm::dmat4 worldToTexture() const;
+    double smallestSpacing() const;
+};
+
+/// Uploads `volume` normalized over `window` and bakes its gradients.
+GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,
+                        const Volume& volume, bake::ValueWindow window);
+
+} // namespace cutaway::render

@@ -1,0 +1,203 @@
+#include "render/slice_renderer.hpp"
+
+#include <cstring>
+
+#include <glm/gtc/packing.hpp>
+
+#include "core/error.hpp"
+#include "gpu/check.hpp"
+#include "render/slice_pipeline.hpp"
+#include "render/slicer.hpp"
+#include "render/transfer_table.hpp"
+#include "shared/frame.h"
+
+namespace cutaway::render {
+namespace {
+
+shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
+                                    const CameraMatrices& cam, double sliceMm) {
+    shader::FrameUniforms u{};
+    u.worldToClip = glm::mat4(cam.viewProj);
+    u.worldToTexture = glm::mat4(volume.worldToTexture());
+    u.eye = glm::vec4(glm::vec3(cam.eye), cam.perspective ? 1.0f : 0.0f);
+    u.viewDir = glm::vec4(glm::vec3(cam.forward), static_cast<float>(sliceMm));
+    const float n = static_cast<float>(kTransferTableSize);
+    // Texel centres: value 0 at the centre of entry 0, value 1 at the centre of entry n-1.
+    u.valueToTf = glm::vec4((n - 1.0f) / n, 0.5f / n, static_cast<float>(volume.smallestSpacing()),
+                            0.0f);
+    const Shading& s = scene.render.shading;
+    u.material = glm::vec4(scene.lights.ambient, s.diffuse, s.specular, s.shininess);
+    u.headlight = glm::vec4(glm::vec3(scene.lights.headlight), 0.0f);
+    const auto& lights = scene.lights.directional;
+    const std::size_t count = std::min<std::size_t>(lights.size(), CW_MAX_LIGHTS);
+    for (std::size_t i = 0; i < count; ++i) {
+        u.lightDir[i] = glm::vec4(glm::vec3(-glm::normalize(lights[i].direction)), 0.0f);
+        u.lightColor[i] = glm::vec4(lights[i].color * lights[i].intensity, 0.0f);
+    }
+    u.flags = glm::vec4(static_cast<float>(count), s.enabled ? 1.0f : 0.0f, 0.0f, 0.0f);
+    return u;
+}
+
+gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume) {
+    std::vector<glm::vec4> table = tabulateTransfer(scene.transfer, volume.window);
+    std::vector<uint64_t> halves(table.size());
+    for (std::size_t i = 0; i < table.size(); ++i) halves[i] = glm::packHalf4x16(table[i]);
+    gpu::Image image = gpu::createImage(
+        ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R16G16B16A16_SFLOAT,
+        {static_cast<uint32_t>(table.size()), 1, 1},
+        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    gpu::uploadImage(ctx, image, halves.data(), halves.size() * sizeof(uint64_t),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    return image;
+}
+
+} // namespace
+
+SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
+    m_sampler = gpu::createLinearSampler(ctx);
+    const auto frag = VK_SHADER_STAGE_FRAGMENT_BIT;
+    m_setLayout = gpu::createSetLayout(
+        ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | frag, nullptr},
+              {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
+              {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
+              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
+    m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), 0, 0);
+    m_pipeline = createSlicePipeline(ctx, m_layout.get());
+    m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
+                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+}
+
+void SliceRenderer::ensureTargets(uint32_t width, uint32_t height) {
+    if (m_color.image && m_color.extent.width == width && m_color.extent.height == height) return;
+    m_color = gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
+                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    m_depthStencil = gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil,
+                                      {width, height, 1},
+                                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                                      VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
+    const VkDeviceSize texel = m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
+    m_readback = gpu::createBuffer(m_ctx, texel * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                   true);
+}
+
+void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
+    if (m_vertices.buffer && m_vertices.size >= bytes) return;
+    m_vertices = gpu::createBuffer(m_ctx, std::max<std::size_t>(bytes * 3 / 2, 4096),
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
+}
+
+Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
+    const int width = scene.render.width, height = scene.render.height;
+    const CameraMatrices cam = computeCamera(scene.camera, volume.box, width, height);
+    const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
+    const double minDepth = cam.perspective ? cam.nearPlane : -1e30;
+    const SliceSet slices = buildSlices(volume.box, cam.eye, cam.forward, sliceMm, minDepth);
+    m_stats = {slices.sliceCount, slices.triangles.size()};
+
+    const std::size_t vertexBytes = slices.triangles.size() * sizeof(glm::vec3);
+    ensureVertexCapacity(vertexBytes);
+    if (vertexBytes) std::memcpy(m_vertices.mapped, slices.triangles.data(), vertexBytes);
+    const shader::FrameUniforms uniforms = frameUniforms(scene, volume, cam, sliceMm);
+    std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
+    ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
+    gpu::Image transfer = uploadTransfer(m_ctx, scene, volume);
+
+    gpu::DescriptorSet set = gpu::allocateDescriptorSet(
+        m_ctx, m_setLayout.get(),
+        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}});
+    gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                               m_uniforms.buffer.get(), sizeof(uniforms));
+    const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, volume.values.view.get(), ro, m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, volume.gradients.view.get(), ro,
+                              m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, transfer.view.get(), ro, m_sampler.get());
+
+    m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        gpu::transition(cmd, m_color, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                        VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+        gpu::transition(cmd, m_depthStencil, VK_IMAGE_LAYOUT_UNDEFINED,
+                        VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                        VK_ACCESS_2_NONE,
+                        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+
+        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        color.imageView = m_color.view.get();
+        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        VkRenderingAttachmentInfo ds{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        ds.imageView = m_depthStencil.view.get();
+        ds.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        ds.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        ds.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+        ds.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        info.renderArea = {{0, 0}, {m_color.extent.width, m_color.extent.height}};
+        info.layerCount = 1;
+        info.colorAttachmentCount = 1;
+        info.pColorAttachments = &color;
+        info.pDepthAttachment = &ds;
+        info.pStencilAttachment = &ds;
+        vkCmdBeginRendering(cmd, &info);
+        VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height),
+                            0.0f, 1.0f};
+        vkCmdSetViewport(cmd, 0, 1, &viewport);
+        vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
+        if (!slices.triangles.empty()) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 0, 1,
+                                    &set.set, 0, nullptr);
+            VkDeviceSize offset = 0;
+            VkBuffer vb = m_vertices.buffer.get();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+            vkCmdDraw(cmd, static_cast<uint32_t>(slices.triangles.size()), 1, 0, 0);
+        }
+        vkCmdEndRendering(cmd);
+
+        gpu::transition(cmd, m_color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = m_color.extent;
+        vkCmdCopyImageToBuffer(cmd, m_color.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               m_readback.buffer.get(), 1, &region);
+        VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &toHost;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+
+    Image image(width, height);
+    const std::size_t count = image.rgba.size();
+    if (m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT) {
+        std::memcpy(image.rgba.data(), m_readback.mapped, count * sizeof(float));
+    } else {
+        const auto* halves = static_cast<const uint16_t*>(m_readback.mapped);
+        for (std::size_t i = 0; i < count; ++i) image.rgba[i] = glm::unpackHalf1x16(halves[i]);
+    }
+    // The background lies behind everything: composite it "under" the volume.
+    const glm::vec4 bg = scene.render.background;
+    const glm::vec4 bgPremultiplied(glm::vec3(bg) * bg.w, bg.w);
+    for (std::size_t i = 0; i < count; i += 4) {
+        const float t = 1.0f - image.rgba[i + 3];
+        for (int c = 0; c < 4; ++c) image.rgba[i + c] += t * bgPremultiplied[c];
+    }
+    return image;
+}
+
+} // namespace cutaway::render

@@ -1,0 +1,54 @@
+#pragma once
+// Texture-based view-aligned slicing into a float target (paper section 5).
+//
+// Per frame: the camera is placed, slice polygons are clipped on the CPU and
+// drawn front to back in one draw call; each fragment samples the volume,
+// classifies, corrects opacity, shades and is composited with premultiplied
+// "under" blending (dst += (1 - dst.a) * src). The target is read back and the
+// background composited behind the volume on the CPU.
+#include <cstdint>
+
+#include "gpu/context.hpp"
+#include "gpu/handle.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "io/image.hpp"
+#include "render/gpu_volume.hpp"
+#include "scene/scene.hpp"
+
+namespace cutaway::render {
+
+/// Numbers about the last frame, for logs and the benchmark.
+struct FrameStats {
+    int slices = 0;
+    std::size_t vertices = 0;
+};
+
+class SliceRenderer {
+public:
+    explicit SliceRenderer(const gpu::Context& ctx);
+
+    /// Renders `scene` (camera, transfer function, lights, render settings) of
+    /// the prepared volume. Returns linear premultiplied RGBA, row 0 at the top.
+    Image render(const Scene& scene, const GpuVolume& volume);
+
+    const FrameStats& lastStats() const { return m_stats; }
+
+private:
+    void ensureTargets(uint32_t width, uint32_t height);
+    void ensureVertexCapacity(std::size_t bytes);
+
+    const gpu::Context& m_ctx;
+    gpu::SamplerHandle m_sampler;
+    gpu::DescriptorSetLayoutHandle m_setLayout;
+    gpu::PipelineLayoutHandle m_layout;
+    gpu::PipelineHandle m_pipeline;
+    gpu::Buffer m_uniforms;
+    gpu::Buffer m_vertices;
+    gpu::Image m_color;
+    gpu::Image m_depthStencil;
+    gpu::Buffer m_readback;
+    FrameStats m_stats;
+};
+
+} // namespace cutaway::render

@@ -1,0 +1,22 @@
+#pragma once
+// The piecewise-linear transfer function tabulated over the value window, as
+// uploaded into an RGBA16F texture (colour straight, alpha per reference step).
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bake/volume_upload.hpp"
+#include "scene/scene.hpp"
+
+namespace cutaway::render {
+
+constexpr int kTransferTableSize = 1024;
+
+/// Entry i holds the transfer function at value lo + (hi - lo) * i / (n - 1).
+std::vector<glm::vec4> tabulateTransfer(const TransferFunction& tf, bake::ValueWindow window,
+                                        int n = kTransferTableSize);
+
+/// Evaluates the piecewise-linear function at one value (clamped to the end points).
+glm::vec4 evaluateTransfer(const TransferFunction& tf, double value);
+
+} // namespace cutaway::render

@@ -1,0 +1,42 @@
+// Lets one header compile as GLSL (included by shaders) and as C++ (with GLM).
+// Keep shared code to the common subset: pass by value, no inout/out
+// parameters, float literals with an f suffix (GLSL accepts it; C++ needs it so
+// glm's templates deduce float), and only built-ins GLM also has.
+#ifndef CUTAWAY_GLSL_CPP_H
+#define CUTAWAY_GLSL_CPP_H
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace cutaway::shader {
+using glm::ivec3;
+using glm::mat3;
+using glm::mat4;
+using glm::vec2;
+using glm::vec3;
+using glm::vec4;
+using uint = std::uint32_t;
+using glm::clamp;
+using glm::cross;
+using glm::dot;
+using glm::length;
+using glm::max;
+using glm::min;
+using glm::mix;
+using glm::normalize;
+using glm::pow;
+using glm::smoothstep;
+} // namespace cutaway::shader
+#define CW_NAMESPACE_BEGIN namespace cutaway::shader {
+#define CW_NAMESPACE_END }
+#define CW_FUNC inline
+#else
+#define CW_NAMESPACE_BEGIN
+#define CW_NAMESPACE_END
+#define CW_FUNC
+#endif
+
+#endif

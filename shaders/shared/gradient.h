@@ -1,0 +1,36 @@
+// Gradient encoding, shared by the bake shader and its CPU reference.
+// The gradient is taken by central differences of the normalized value
+// (0..1 over the value window) per millimetre, so anisotropic spacing gives
+// the physical gradient direction. It is stored in an RGBA8_SNORM texel:
+// xyz = unit direction (toward increasing value), w = magnitude in [0, 1]
+// where 1 means a change of half the window per voxel step or more.
+#ifndef CUTAWAY_GRADIENT_H
+#define CUTAWAY_GRADIENT_H
+
+#include "shared/glsl_cpp.h"
+
+CW_NAMESPACE_BEGIN
+
+struct GradientParams {
+    ivec3 dims;          // voxels
+    float magnitudeScale; // smallest spacing (mm) * 2: turns 1/mm into "per half-window per voxel"
+    vec3 halfInvSpacing; // 1 / (2 * spacing), 1/mm
+    float pad0;
+};
+
+// `delta` = (v[x+1] - v[x-1], v[y+1] - v[y-1], v[z+1] - v[z-1]), neighbours
+// clamped to the grid. Returns (direction, magnitude); zero for a flat region.
+CW_FUNC vec4 encodeGradient(vec3 delta, GradientParams p) {
+    vec3 g = delta * p.halfInvSpacing;
+    float len = length(g);
+    if (len < 1e-8f) return vec4(0.0f);
+    return vec4(g / len, min(len * p.magnitudeScale, 1.0f));
+}
+
+CW_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(sizeof(cutaway::shader::GradientParams) == 32);
+#endif
+
+#endif

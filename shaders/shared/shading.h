@@ -1,0 +1,64 @@
+// Per-sample math of the volume integral, written once for the shaders and the
+// CPU reference: opacity correction and Blinn-Phong shading.
+#ifndef CUTAWAY_SHADING_H
+#define CUTAWAY_SHADING_H
+
+#include "shared/frame.h"
+#include "shared/glsl_cpp.h"
+
+CW_NAMESPACE_BEGIN
+
+// Opacity of a sample `ratio` reference steps thick, given its opacity for one
+// reference step: 1 - (1 - alpha)^ratio. Keeps the image independent of the
+// slice spacing (Engel et al., Real-Time Volume Graphics, 2006, eq. 1.12).
+CW_FUNC float correctOpacity(float alpha, float ratio) {
+    return 1.0f - pow(max(1.0f - alpha, 0.0f), ratio);
+}
+
+// Weight of gradient shading for a normalized gradient magnitude in [0, 1]:
+// homogeneous regions (tiny gradients, unreliable normals) get no highlight.
+CW_FUNC float shadingWeight(float gradientMagnitude) {
+    return smoothstep(0.01f, 0.06f, gradientMagnitude);
+}
+
+// Blinn-Phong for one light. n, toLight and toEye are unit vectors; the normal
+// is flipped toward the eye first (two-sided lighting: a volume has no inside).
+// Returns (diffuse factor, specular factor) scaled by the material.
+CW_FUNC vec2 blinnPhong(vec3 n, vec3 toLight, vec3 toEye, float diffuse, float specular,
+                        float shininess) {
+    vec3 nf = dot(n, toEye) < 0.0f ? -n : n;
+    float d = max(dot(nf, toLight), 0.0f);
+    vec3 h = normalize(toLight + toEye);
+    float s = d > 0.0f ? pow(max(dot(nf, h), 0.0f), shininess) : 0.0f;
+    return vec2(diffuse * d, specular * s);
+}
+
+// Colour of a classified sample: Blinn-Phong with an ambient term, a headlight
+// (a light at the eye) and up to CW_MAX_LIGHTS directional lights. `gradient`
+// is a baked texel (unit direction toward increasing value, magnitude in w);
+// the surface normal is its opposite. Where the gradient is too weak to give a
+// reliable normal, the sample is lit as if it faced the headlight, blended by
+// shadingWeight so that homogeneous tissue does not sparkle.
+CW_FUNC vec3 shadeSample(vec3 albedo, vec4 gradient, vec3 toEye, FrameUniforms u) {
+    if (u.flags.y < 0.5f) return albedo; // shading off: the transfer function's colour as is
+    vec3 g = vec3(gradient);
+    vec3 n = dot(g, g) > 1e-12f ? normalize(-g) : toEye;
+    vec3 lit = vec3(u.material.x);
+    vec3 highlight = vec3(0.0f);
+    vec2 head = blinnPhong(n, toEye, toEye, u.material.y, u.material.z, u.material.w);
+    lit += vec3(u.headlight) * head.x;
+    highlight += vec3(u.headlight) * head.y;
+    for (int i = 0; i < int(u.flags.x); ++i) {
+        vec2 l = blinnPhong(n, vec3(u.lightDir[i]), toEye, u.material.y, u.material.z,
+                            u.material.w);
+        lit += vec3(u.lightColor[i]) * l.x;
+        highlight += vec3(u.lightColor[i]) * l.y;
+    }
+    vec3 shaded = albedo * lit + highlight;
+    vec3 unlit = albedo * (vec3(u.material.x) + vec3(u.headlight) * u.material.y);
+    return mix(unlit, shaded, shadingWeight(gradient.w));
+}
+
+CW_NAMESPACE_END
+
+#endif
