@@ -3,6 +3,7 @@
 // cutaway holds a handful of large resources, so a sub-allocator would buy
 // nothing), uploads through a staging buffer, and layout transitions.
 #include <cstddef>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -44,6 +45,12 @@ void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkI
 /// `finalLayout`, readable by `dstStage`. Blocks until done.
 void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,
                  VkImageLayout finalLayout, VkPipelineStageFlags2 dstStage);
+
+/// Copies a whole image back to the host (tests and tools; blocks). The image
+/// must be in `layout` (and readable by transfers after `srcStage`) and is
+/// left in it.
+std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkImageLayout layout,
+                                     std::size_t bytesPerTexel);
 
 /// A linear-filtering, clamp-to-edge sampler.
 SamplerHandle createLinearSampler(const Context& ctx);

@@ -8,6 +8,7 @@
 #include "gpu/check.hpp"
 #include "render/slice_pipeline.hpp"
 #include "render/slicer.hpp"
+#include "render/preintegration.hpp"
 #include "render/transfer_table.hpp"
 #include "shared/frame.h"
 
@@ -21,7 +22,8 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
     u.worldToTexture = glm::mat4(volume.worldToTexture());
     u.eye = glm::vec4(glm::vec3(cam.eye), cam.perspective ? 1.0f : 0.0f);
     u.viewDir = glm::vec4(glm::vec3(cam.forward), static_cast<float>(sliceMm));
-    const float n = static_cast<float>(kTransferTableSize);
+    const bool preintegrated = scene.render.classification == Classification::Preintegrated;
+    const float n = static_cast<float>(preintegrated ? kPreintegrationSize : kTransferTableSize);
     // Texel centres: value 0 at the centre of entry 0, value 1 at the centre of entry n-1.
     u.valueToTf = glm::vec4((n - 1.0f) / n, 0.5f / n, static_cast<float>(volume.smallestSpacing()),
                             0.0f);
@@ -34,17 +36,25 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
         u.lightDir[i] = glm::vec4(glm::vec3(-glm::normalize(lights[i].direction)), 0.0f);
         u.lightColor[i] = glm::vec4(lights[i].color * lights[i].intensity, 0.0f);
     }
-    u.flags = glm::vec4(static_cast<float>(count), s.enabled ? 1.0f : 0.0f, 0.0f, 0.0f);
+    u.flags = glm::vec4(static_cast<float>(count), s.enabled ? 1.0f : 0.0f,
+                        preintegrated ? 1.0f : 0.0f, 0.0f);
     return u;
 }
 
-gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume) {
+// The classification table: the 1D transfer function (post-classification) or
+// its pre-integrated 2D table for slabs one slice spacing thick.
+gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
+                          double sliceMm) {
     std::vector<glm::vec4> table = tabulateTransfer(scene.transfer, volume.window);
+    uint32_t width = static_cast<uint32_t>(table.size()), height = 1;
+    if (scene.render.classification == Classification::Preintegrated) {
+        table = preintegrate(table, volume.smallestSpacing(), sliceMm);
+        width = height = kPreintegrationSize;
+    }
     std::vector<uint64_t> halves(table.size());
     for (std::size_t i = 0; i < table.size(); ++i) halves[i] = glm::packHalf4x16(table[i]);
     gpu::Image image = gpu::createImage(
-        ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R16G16B16A16_SFLOAT,
-        {static_cast<uint32_t>(table.size()), 1, 1},
+        ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height, 1},
         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     gpu::uploadImage(ctx, image, halves.data(), halves.size() * sizeof(uint64_t),
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
@@ -100,7 +110,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const shader::FrameUniforms uniforms = frameUniforms(scene, volume, cam, sliceMm);
     std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
     ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
-    gpu::Image transfer = uploadTransfer(m_ctx, scene, volume);
+    gpu::Image transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
 
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),

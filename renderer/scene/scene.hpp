@@ -74,7 +74,7 @@ struct DirectionalLight {
 /// /lights
 struct Lights {
     float ambient = 0.2f;    ///< /lights/ambient, [0, 1]
-    float headlight = 0.8f;  ///< /lights/headlight: intensity of a white light at the eye, >= 0
+    float headlight = 0.8f;  ///< /lights/headlight: intensity of a white light at the eye, [0, 10]
     std::vector<DirectionalLight> directional; ///< /lights/directional, at most 4
 };
 
@@ -86,12 +86,19 @@ struct Shading {
     float shininess = 32.0f; ///< [1, 512]
 };
 
+/// /render/classification: how a slab between two slices is classified.
+///   "preintegrated": from a table of the slab's front and back values
+///                    (no slicing rings on thin or steep features; default)
+///   "post":          the transfer function at the slab's front sample only
+enum class Classification { Preintegrated, Post };
+
 /// /render
 struct RenderSettings {
     int width = 512;                 ///< /render/size[0], [1, 16384]
     int height = 512;                ///< /render/size[1]
     double sliceSpacing = 1.0;       ///< /render/slice_spacing: in voxels (smallest spacing), [0.05, 16]
     glm::vec4 background{0, 0, 0, 1}; ///< /render/background: RGB(A) or "transparent" (0,0,0,0)
+    Classification classification = Classification::Preintegrated;
     Shading shading;
 };
 

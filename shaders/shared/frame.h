@@ -15,12 +15,13 @@ struct FrameUniforms {
     mat4 worldToTexture; // world -> volume texture coordinates, [0,1]^3 over the box
     vec4 eye;            // xyz: eye position (perspective) ; w: 1 perspective, 0 orthographic
     vec4 viewDir;        // xyz: unit forward direction ; w: slice spacing in mm
-    vec4 valueToTf;      // x, y: tf coordinate = value * x + y ; z: reference step in mm
+    vec4 valueToTf;      // x, y: table coordinate = value * x + y ; z: reference step in mm
     vec4 material;       // x ambient, y diffuse, z specular, w shininess
     vec4 headlight;      // rgb: colour * intensity at the eye
     vec4 lightDir[CW_MAX_LIGHTS];   // xyz: unit direction TOWARD the light ; w unused
     vec4 lightColor[CW_MAX_LIGHTS]; // rgb: colour * intensity ; w unused
     vec4 flags;          // x: number of directional lights ; y: shading on (1) / off (0)
+                         // z: 1 pre-integrated table (2D), 0 post-classification (1D)
 };
 
 CW_NAMESPACE_END

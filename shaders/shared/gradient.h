@@ -1,7 +1,11 @@
 // Gradient encoding, shared by the bake shader and its CPU reference.
-// The gradient is taken by central differences of the normalized value
-// (0..1 over the value window) per millimetre, so anisotropic spacing gives
-// the physical gradient direction. It is stored in an RGBA8_SNORM texel:
+// The gradient is taken with a 3x3x3 Sobel-style operator: the central
+// difference along each axis, smoothed across it with weights [1 2 1] / 4 in
+// each of the other two axes. Plain central differences show the terraces of
+// voxelized surfaces as contour rings under specular light; the smoothing
+// removes them at the cost of a slightly blurrier normal. Differences are of
+// the normalized value (0..1 over the value window) per millimetre, so
+// anisotropic spacing gives the physical gradient direction. It is stored in an RGBA8_SNORM texel:
 // xyz = unit direction (toward increasing value), w = magnitude in [0, 1]
 // where 1 means a change of half the window per voxel step or more.
 #ifndef CUTAWAY_GRADIENT_H
@@ -18,7 +22,12 @@ struct GradientParams {
     float pad0;
 };
 
-// `delta` = (v[x+1] - v[x-1], v[y+1] - v[y-1], v[z+1] - v[z-1]), neighbours
+// Weight of a neighbour at transverse offsets (a, b) in {-1, 0, 1}.
+CW_FUNC float sobelWeight(int a, int b) {
+    return (a == 0 ? 0.5f : 0.25f) * (b == 0 ? 0.5f : 0.25f);
+}
+
+// `delta` = the smoothed differences (v[x+1] - v[x-1], ...), neighbours
 // clamped to the grid. Returns (direction, magnitude); zero for a flat region.
 CW_FUNC vec4 encodeGradient(vec3 delta, GradientParams p) {
     vec3 g = delta * p.halfInvSpacing;

@@ -33,14 +33,25 @@ CW_FUNC vec2 blinnPhong(vec3 n, vec3 toLight, vec3 toEye, float diffuse, float s
     return vec2(diffuse * d, specular * s);
 }
 
-// Colour of a classified sample: Blinn-Phong with an ambient term, a headlight
-// (a light at the eye) and up to CW_MAX_LIGHTS directional lights. `gradient`
-// is a baked texel (unit direction toward increasing value, magnitude in w);
-// the surface normal is its opposite. Where the gradient is too weak to give a
-// reliable normal, the sample is lit as if it faced the headlight, blended by
-// shadingWeight so that homogeneous tissue does not sparkle.
-CW_FUNC vec3 shadeSample(vec3 albedo, vec4 gradient, vec3 toEye, FrameUniforms u) {
-    if (u.flags.y < 0.5f) return albedo; // shading off: the transfer function's colour as is
+// Light reaching a sample: Blinn-Phong with an ambient term, a headlight (a
+// light at the eye) and up to CW_MAX_LIGHTS directional lights. `gradient` is
+// a baked texel (unit direction toward increasing value, magnitude in w); the
+// surface normal is its opposite. Where the gradient is too weak to give a
+// reliable normal the sample is lit as if it faced the headlight, blended by
+// shadingWeight, so homogeneous tissue does not sparkle.
+// Shaded premultiplied colour = colour * diffuse + alpha * specular.
+struct Lighting {
+    vec3 diffuse;
+    vec3 specular;
+};
+
+CW_FUNC Lighting lightSample(vec4 gradient, vec3 toEye, FrameUniforms u) {
+    Lighting result;
+    if (u.flags.y < 0.5f) { // shading off: the transfer function's colour as is
+        result.diffuse = vec3(1.0f);
+        result.specular = vec3(0.0f);
+        return result;
+    }
     vec3 g = vec3(gradient);
     vec3 n = dot(g, g) > 1e-12f ? normalize(-g) : toEye;
     vec3 lit = vec3(u.material.x);
@@ -54,9 +65,11 @@ CW_FUNC vec3 shadeSample(vec3 albedo, vec4 gradient, vec3 toEye, FrameUniforms u
         lit += vec3(u.lightColor[i]) * l.x;
         highlight += vec3(u.lightColor[i]) * l.y;
     }
-    vec3 shaded = albedo * lit + highlight;
-    vec3 unlit = albedo * (vec3(u.material.x) + vec3(u.headlight) * u.material.y);
-    return mix(unlit, shaded, shadingWeight(gradient.w));
+    float w = shadingWeight(gradient.w);
+    vec3 unlit = vec3(u.material.x) + vec3(u.headlight) * u.material.y;
+    result.diffuse = mix(unlit, lit, w);
+    result.specular = highlight * w;
+    return result;
 }
 
 CW_NAMESPACE_END

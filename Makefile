@@ -1,0 +1,33 @@
+# The README's two commands, plus a few conveniences.
+#   make demo   install what is missing, build, render the default scene (EXR + PNG)
+#   make test   install what is missing, build, run the whole test suite with ctest
+BUILD ?= build
+JOBS ?= $(shell nproc)
+BUILD_TYPE ?= Release
+
+.PHONY: all deps configure build demo test clean format
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+configure: deps
+	@if [ ! -f $(BUILD)/build.ninja ]; then \
+	  cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) >/dev/null; fi
+
+build: configure
+	@cmake --build $(BUILD) --parallel $(JOBS)
+
+demo: build
+	@$(BUILD)/cutaway render scenes/demo.json --png
+	@echo "demo: open out/demo_0000.exr (linear, premultiplied RGBA) or out/demo_0000.png"
+
+test: build
+	@ctest --test-dir $(BUILD) --output-on-failure --timeout 900 -j $(JOBS)
+
+format:
+	@git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i
+
+clean:
+	@rm -rf $(BUILD) out

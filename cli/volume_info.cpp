@@ -1,0 +1,50 @@
+#include "volume_info.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace cutaway::cli {
+
+std::string describeVolume(const Volume& volume, const std::string& name) {
+    char line[256];
+    std::string out;
+    auto add = [&](const char* fmt, auto... args) {
+        std::snprintf(line, sizeof line, fmt, args...);
+        out += line;
+    };
+    const ValueRange range = valueRange(volume);
+    add("%s\n", name.c_str());
+    add("  dims     %d x %d x %d (%zu voxels)\n", volume.dims.x, volume.dims.y, volume.dims.z,
+        volume.voxelCount());
+    add("  type     %s\n", std::string(voxelTypeName(volume.type)).c_str());
+    add("  spacing  %g x %g x %g mm\n", volume.spacing.x, volume.spacing.y, volume.spacing.z);
+    const glm::dvec3 e = volume.extent();
+    add("  extent   %g x %g x %g mm\n", e.x, e.y, e.z);
+    if (volume.slope != 1.0 || volume.inter != 0.0)
+        add("  scaling  value = raw * %g + %g\n", volume.slope, volume.inter);
+    add("  values   [%g, %g]\n", range.min, range.max);
+
+    constexpr int kBins = 16;
+    std::vector<std::size_t> bins(kBins, 0);
+    const double width = range.max > range.min ? (range.max - range.min) / kBins : 1.0;
+    for (std::size_t i = 0; i < volume.voxelCount(); ++i) {
+        const double v = volume.value(i);
+        if (std::isnan(v)) continue;
+        int b = static_cast<int>((v - range.min) / width);
+        bins[static_cast<std::size_t>(std::clamp(b, 0, kBins - 1))]++;
+    }
+    const std::size_t peak = std::max<std::size_t>(1, *std::max_element(bins.begin(), bins.end()));
+    add("  histogram (%d bins, %% of voxels)\n", kBins);
+    for (int b = 0; b < kBins; ++b) {
+        const std::size_t n = bins[static_cast<std::size_t>(b)];
+        const int bar = static_cast<int>(40.0 * static_cast<double>(n) / static_cast<double>(peak));
+        add("    [%10.4g, %10.4g) %6.2f%% %s\n", range.min + b * width, range.min + (b + 1) * width,
+            100.0 * static_cast<double>(n) / static_cast<double>(volume.voxelCount()),
+            std::string(static_cast<std::size_t>(bar), '#').c_str());
+    }
+    return out;
+}
+
+} // namespace cutaway::cli

@@ -1,0 +1,58 @@
+#pragma once
+// Runs a scene: loads its volume (a file or a phantom), prepares it on the
+// device once, renders frames and writes them (EXR, optional PNG preview).
+// The CLI is a thin layer over this; tests drive it directly.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bake/volume_upload.hpp"
+#include "gpu/context.hpp"
+#include "io/image.hpp"
+#include "scene/scene.hpp"
+#include "volume/volume.hpp"
+
+namespace cutaway::job {
+
+/// The scene's volume: read from its file (or made as its phantom), with the
+/// spacing override applied. Throws InputError naming the file on failure.
+Volume loadSceneVolume(const Scene& scene);
+
+/// The value window: the scene's, else the volume's value range (a flat
+/// volume gets a window of width 1 so normalization stays defined).
+bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
+
+/// Expands "####" (any run of #) or "%0Nd" / "%d" in `pattern` with `frame`.
+/// A pattern without a placeholder is used as is.
+std::string expandPattern(const std::string& pattern, int frame);
+
+/// The PNG preview path that goes with an EXR path (same name, .png).
+std::filesystem::path previewPath(const std::filesystem::path& exrPath);
+
+/// What the command line can change for a run.
+struct RenderOverrides {
+    std::optional<std::string> outputPattern; ///< replaces /output/pattern (relative to cwd)
+    std::optional<glm::ivec2> size;           ///< replaces /render/size
+    bool png = false;                         ///< also write PNG previews
+};
+
+/// Applies overrides to a parsed scene (validated by the caller).
+void applyOverrides(Scene& scene, const RenderOverrides& overrides);
+
+struct FrameResult {
+    int frame = 0;
+    std::filesystem::path exr;
+    std::optional<std::filesystem::path> png;
+    double seconds = 0.0;
+};
+
+/// Renders the scene's single frame (frame 0) and writes it. Returns what was written.
+std::vector<FrameResult> renderScene(const gpu::Context& ctx, const Scene& scene);
+
+/// Renders one frame to an image without writing anything (tests, benchmark).
+Image renderImage(const gpu::Context& ctx, const Scene& scene);
+
+} // namespace cutaway::job

@@ -1,0 +1,23 @@
+#pragma once
+// Pre-integrated classification (Engel, Kraus, Ertl, "High-Quality
+// Pre-Integrated Volume Rendering", 2001). Slicing samples the volume once per
+// slab; a thin or steep transfer-function feature then shows as rings where
+// slices cut a surface. Pre-integration instead looks up the whole slab: entry
+// (f, b) is the premultiplied colour and opacity of a ray segment of length
+// `segmentMm` along which the normalized value goes linearly from s_f (front)
+// to s_b (back), integrated with self-attenuation.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace cutaway::render {
+
+constexpr int kPreintegrationSize = 256;
+
+/// `table` is the transfer function tabulated over the window (straight colour,
+/// alpha per `referenceMm` of material, as tabulateTransfer gives). Returns
+/// n * n premultiplied RGBA entries, front value along x (fastest), back along y.
+std::vector<glm::vec4> preintegrate(const std::vector<glm::vec4>& table, double referenceMm,
+                                    double segmentMm, int n = kPreintegrationSize);
+
+} // namespace cutaway::render

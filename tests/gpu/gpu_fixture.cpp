@@ -1,0 +1,63 @@
+#include "gpu_fixture.hpp"
+
+#include <cmath>
+
+#include "bake/gradient_bake.hpp"
+#include "job/render_job.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/slice_renderer.hpp"
+
+namespace cutaway::test {
+
+Scene headScene(int phantomSize, int width, int height) {
+    Scene s;
+    s.volume.phantom = "head";
+    s.volume.phantomSize = glm::ivec3(phantomSize);
+    s.transfer.points = {{0.0, {0, 0, 0}, 0.0f},
+                         {50.0, {0.9f, 0.7f, 0.6f}, 0.0f},
+                         {80.0, {0.9f, 0.7f, 0.6f}, 0.05f},
+                         {115.0, {0.9f, 0.5f, 0.5f}, 0.2f},
+                         {200.0, {1.0f, 1.0f, 0.9f}, 0.9f},
+                         {255.0, {1.0f, 1.0f, 0.9f}, 1.0f}};
+    s.camera.azimuthDeg = 0.0;
+    s.camera.elevationDeg = 0.0;
+    s.render.width = width;
+    s.render.height = height;
+    s.render.background = glm::vec4(0.0f);
+    s.lights.directional.clear();
+    return s;
+}
+
+Image renderVolume(const gpu::Context& ctx, const Scene& scene, const Volume& volume) {
+    bake::GradientBaker baker(ctx);
+    render::GpuVolume gv =
+        render::prepareVolume(ctx, baker, volume, job::sceneWindow(scene, volume));
+    render::SliceRenderer renderer(ctx);
+    return renderer.render(scene, gv);
+}
+
+Image renderScene(const gpu::Context& ctx, const Scene& scene) {
+    return renderVolume(ctx, scene, job::loadSceneVolume(scene));
+}
+
+ImageDiff compareImages(const Image& a, const Image& b) {
+    ImageDiff d;
+    if (a.width != b.width || a.height != b.height) {
+        d.maxAbs = INFINITY;
+        d.rms = INFINITY;
+        d.meanAbs = INFINITY;
+        return d;
+    }
+    double sum2 = 0.0, sum1 = 0.0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+        const float e = std::abs(a.rgba[i] - b.rgba[i]);
+        d.maxAbs = std::max(d.maxAbs, e);
+        sum2 += double(e) * e;
+        sum1 += e;
+    }
+    d.rms = std::sqrt(sum2 / static_cast<double>(a.rgba.size()));
+    d.meanAbs = sum1 / static_cast<double>(a.rgba.size());
+    return d;
+}
+
+} // namespace cutaway::test

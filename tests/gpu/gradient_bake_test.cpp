@@ -1,0 +1,91 @@
+// The GPU gradient bake against the CPU evaluation of the same shared header.
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "bake/gradient_bake.hpp"
+#include "bake/volume_upload.hpp"
+#include "gpu_fixture.hpp"
+#include "shared/gradient.h"
+
+namespace cutaway::test {
+namespace {
+
+Volume randomVolume(glm::ivec3 dims, glm::dvec3 spacing, unsigned seed) {
+    Volume v = Volume::allocate(dims, VoxelType::U16, spacing);
+    std::mt19937 rng(seed);
+    auto* p = reinterpret_cast<uint16_t*>(v.data.data());
+    // Smooth structure plus noise, so gradients have every direction and size.
+    std::uniform_int_distribution<int> noise(0, 400);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x)
+                p[v.index(x, y, z)] = static_cast<uint16_t>(
+                    1000 * x + 700 * y * y / dims.y + 300 * z + noise(rng));
+    return v;
+}
+
+} // namespace
+
+TEST_F(GpuTest, GradientBakeMatchesCpuReference) {
+    const glm::ivec3 dims(13, 11, 9);
+    const glm::dvec3 spacing(0.7, 1.3, 2.5); // anisotropic: division by spacing must happen
+    Volume volume = randomVolume(dims, spacing, 7);
+    const ValueRange range = valueRange(volume);
+    const bake::ValueWindow window{range.min, range.max};
+
+    bake::GradientBaker baker(ctx());
+    gpu::Image values = bake::uploadVolume(ctx(), volume, window);
+    gpu::Image gradients = baker.bake(values, spacing);
+    std::vector<std::byte> bytes =
+        gpu::downloadImage(ctx(), gradients, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4);
+    const auto* texels = reinterpret_cast<const int8_t*>(bytes.data());
+
+    std::vector<uint16_t> norm = bake::normalizeVolume(volume, window);
+    auto at = [&](int x, int y, int z) {
+        x = std::clamp(x, 0, dims.x - 1);
+        y = std::clamp(y, 0, dims.y - 1);
+        z = std::clamp(z, 0, dims.z - 1);
+        return norm[volume.index(x, y, z)] / 65535.0f;
+    };
+    shader::GradientParams params{};
+    params.dims = dims;
+    params.magnitudeScale = static_cast<float>(2.0 * 0.7);
+    params.halfInvSpacing = glm::vec3(0.5 / spacing);
+
+    float maxErr = 0.0f;
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                glm::vec3 delta(0.0f);
+                for (int a = -1; a <= 1; ++a)
+                    for (int b = -1; b <= 1; ++b) {
+                        const float w = shader::sobelWeight(a, b);
+                        delta.x += w * (at(x + 1, y + a, z + b) - at(x - 1, y + a, z + b));
+                        delta.y += w * (at(x + a, y + 1, z + b) - at(x + a, y - 1, z + b));
+                        delta.z += w * (at(x + a, y + b, z + 1) - at(x + a, y + b, z - 1));
+                    }
+                glm::vec4 expected = shader::encodeGradient(delta, params);
+                const int8_t* t = texels + 4 * volume.index(x, y, z);
+                for (int c = 0; c < 4; ++c) {
+                    const float got = std::max(t[c] / 127.0f, -1.0f);
+                    maxErr = std::max(maxErr, std::abs(got - expected[c]));
+                }
+            }
+    // SNORM8 quantization is 1/254 at best; allow one step of rounding difference.
+    EXPECT_LE(maxErr, 1.0f / 127.0f + 1e-6f);
+}
+
+TEST(GradientEncoding, PointsTowardIncreasingValueAndHonoursSpacing) {
+    shader::GradientParams p{};
+    p.magnitudeScale = 2.0f;
+    p.halfInvSpacing = glm::vec3(0.5f / 1.0f, 0.5f / 1.0f, 0.5f / 4.0f);
+    // Same value change per voxel along x and z, but z voxels are 4x longer.
+    glm::vec4 g = shader::encodeGradient(glm::vec3(0.2f, 0.0f, 0.2f), p);
+    EXPECT_NEAR(glm::length(glm::vec3(g)), 1.0f, 1e-5f);
+    EXPECT_NEAR(g.x / g.z, 4.0f, 1e-4f);
+    EXPECT_GT(g.x, 0.0f);
+    EXPECT_EQ(shader::encodeGradient(glm::vec3(0.0f), p), glm::vec4(0.0f));
+}
+
+} // namespace cutaway::test
