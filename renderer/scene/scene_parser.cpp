@@ -1,0 +1,168 @@
+// parseScene and loadScene: the top level of a scene document, and the
+// /render and /output sections. The other sections are parsed in
+// scene_volume.cpp and scene_camera.cpp.
+#include "core/error.hpp"
+#include "scene/json_reader.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_sections.hpp"
+
+#include <cerrno>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+namespace cutaway {
+
+namespace scene_detail {
+
+/// /render: the image and how the volume is sampled.
+///
+///  * size           [integer, integer], pixels, each in [1, 16384], default [512, 512]
+///                   Width and height of the image.
+///  * slice_spacing  number, voxels (of the smallest spacing), in [0.05, 16], default 1
+///                   Distance between the slices that sample the volume.
+///  * background     [number x3] or [number x4], linear RGB(A), each in [0, 1],
+///                   or the string "transparent" (= [0, 0, 0, 0]); default [0, 0, 0]
+///                   Three numbers mean alpha 1.
+///  * classification "preintegrated" or "post", default "preintegrated"
+///                   How the slab between two slices is classified: from a table of
+///                   its front and back values (no rings on thin features), or from
+///                   the transfer function at its front sample only.
+///  * shading        object, default {}: Blinn-Phong material of every sample
+///    * enabled      boolean, default true: false shows the transfer function's colours unlit
+///    * diffuse      number, in [0, 1], default 0.8
+///    * specular     number, in [0, 1], default 0.3
+///    * shininess    number, Blinn-Phong exponent, in [1, 512], default 32
+void parseRender(JsonReader& reader, RenderSettings& render) {
+    if (const auto size = reader.integers("size", 2, 2, 1, 16384)) {
+        render.width = int((*size)[0]);
+        render.height = int((*size)[1]);
+    }
+    render.sliceSpacing = reader.number("slice_spacing", render.sliceSpacing, 0.05, 16.0);
+
+    if (const nlohmann::json* background = reader.find("background")) {
+        const std::string pointer = reader.pointerOf("background");
+        const char* what = "an array of 3 or 4 numbers in [0, 1], or \"transparent\"";
+        if (background->is_array() && (background->size() == 3 || background->size() == 4)) {
+            const auto rgba = reader.asNumbers(*background, pointer, 3, 4, Range::closed(0, 1));
+            if (rgba) {
+                render.background = glm::vec4(glm::dvec4((*rgba)[0], (*rgba)[1], (*rgba)[2],
+                                                         rgba->size() == 4 ? (*rgba)[3] : 1.0));
+            }
+        } else if (background->is_string() && background->get<std::string>() == "transparent") {
+            render.background = glm::vec4(0.0f);
+        } else {
+            reader.expected(pointer, what, *background);
+        }
+    }
+
+    const std::string classification = reader.string(
+        "classification", render.classification == Classification::Post ? "post" : "preintegrated",
+        {"preintegrated", "post"});
+    render.classification =
+        classification == "post" ? Classification::Post : Classification::Preintegrated;
+
+    reader.object("shading", [&](JsonReader& shading) {
+        Shading& s = render.shading;
+        s.enabled = shading.boolean("enabled", s.enabled);
+        s.diffuse = float(shading.number("diffuse", s.diffuse, 0.0, 1.0));
+        s.specular = float(shading.number("specular", s.specular, 0.0, 1.0));
+        s.shininess = float(shading.number("shininess", s.shininess, 1.0, 512.0));
+    });
+}
+
+/// /output: where and how frames are written.
+///
+///  * pattern     string, path, non-empty, default "cutaway_####.exr"
+///                The EXR file of each frame; a run of '#' is replaced by the
+///                zero-padded frame number. Relative paths are relative to the
+///                scene file's folder.
+///  * pixel_type  string, "half" or "float", default "half": EXR channel type
+///  * png         boolean, default false: also write an 8-bit sRGB PNG preview
+void parseOutput(JsonReader& reader, OutputSettings& output) {
+    output.pattern = reader.string("pattern", output.pattern);
+    output.pixelType = reader.string("pixel_type", "half", {"half", "float"}) == "float"
+                           ? PixelType::Float
+                           : PixelType::Half;
+    output.png = reader.boolean("png", output.png);
+}
+
+} // namespace scene_detail
+
+/// The top level of a scene document.
+///
+///  * version    integer, required, must be 1: the version of this format
+///  * volume     object, required: the scalar field (scene_volume.cpp)
+///  * transfer   object, default: a grey ramp (scene_volume.cpp)
+///  * camera     object, default: an orbit that fits the volume (scene_camera.cpp)
+///  * lights     object, default: ambient 0.2 and a headlight 0.8 (scene_camera.cpp)
+///  * render     object, default: 512 x 512, black background, shaded
+///  * output     object, default: "cutaway_####.exr" next to the scene, half floats
+///  * labels, operators, meshes, animation: reserved for later versions; rejected.
+Scene parseScene(const nlohmann::json& document, const std::filesystem::path& baseDir,
+                 const std::string& source) {
+    using namespace scene_detail;
+    Diagnostics diagnostics(source);
+    if (!document.is_object()) {
+        diagnostics.error("", "expected an object (a scene), got " + describeValue(document));
+        diagnostics.throwIfAny();
+    }
+
+    Scene scene;
+    scene.baseDir = baseDir;
+    JsonReader root(document, diagnostics);
+    if (const nlohmann::json* version = root.find("version")) {
+        if (!(version->is_number_integer() && version->get<std::int64_t>() == 1)) {
+            root.error("version",
+                       "unsupported version: expected 1, got " + describeValue(*version));
+        }
+    } else {
+        root.error("version", "missing; add \"version\": 1 at the top level of the scene");
+    }
+
+    root.object(
+        "volume", [&](JsonReader& reader) { parseVolume(reader, scene.volume, baseDir); }, true);
+    scene.transfer = defaultTransfer();
+    root.object("transfer", [&](JsonReader& reader) { parseTransfer(reader, scene.transfer); });
+    root.object("camera", [&](JsonReader& reader) { parseCamera(reader, scene.camera); });
+    root.object("lights", [&](JsonReader& reader) { parseLights(reader, scene.lights); });
+    root.object("render", [&](JsonReader& reader) { parseRender(reader, scene.render); });
+    root.object("output", [&](JsonReader& reader) { parseOutput(reader, scene.output); });
+    // Relative output patterns (the default too) resolve against the scene's folder.
+    const std::filesystem::path pattern(scene.output.pattern);
+    if (pattern.is_relative() && !baseDir.empty())
+        scene.output.pattern = (baseDir / pattern).lexically_normal().string();
+
+    for (const char* key : {"labels", "operators", "meshes", "animation"})
+        root.reserved(key);
+    root.finish();
+    diagnostics.throwIfAny();
+
+    scene.document = document;
+    return scene;
+}
+
+Scene loadScene(const std::filesystem::path& file) {
+    const std::string source = file.string();
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw InputError(source + ": cannot read scene (it is a folder)");
+    std::ifstream stream(file, std::ios::binary);
+    if (!stream) {
+        const std::string reason = std::error_code(errno, std::generic_category()).message();
+        throw InputError(source + ": cannot read scene (" + reason + ")");
+    }
+    std::ostringstream text;
+    text << stream.rdbuf();
+    if (stream.bad()) throw InputError(source + ": cannot read scene (read error)");
+
+    const nlohmann::json document = parseJsonText(text.str(), source);
+    const std::filesystem::path absolute = std::filesystem::absolute(file, ec);
+    const std::filesystem::path baseDir = (ec ? file : absolute).lexically_normal().parent_path();
+    Scene scene = parseScene(document, baseDir, source);
+    scene.file = file;
+    return scene;
+}
+
+} // namespace cutaway

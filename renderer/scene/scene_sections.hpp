@@ -1,0 +1,31 @@
+#pragma once
+// Internal to the scene library: one parse function per top-level section of a
+// scene document. Each reads its keys from `reader` (the section's object),
+// writes them into the section's struct (whose current values are the
+// defaults), and reports problems to the reader's diagnostics. The keys of each
+// section are documented at the top of its parse function.
+#include "scene/json_reader.hpp"
+#include "scene/scene.hpp"
+
+#include <filesystem>
+
+namespace cutaway::scene_detail {
+
+/// Bounds that keep numbers far from overflow in the renderer's float math.
+inline constexpr double kMaxCoordinate = 1.0e6; ///< mm: positions, distances, heights
+inline constexpr double kMaxValue = 1.0e30;     ///< volume values (window, transfer points)
+
+void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem::path& baseDir);
+void parseTransfer(JsonReader& reader, TransferFunction& transfer);
+/// The transfer function used when a scene has no /transfer section.
+TransferFunction defaultTransfer();
+void parseCamera(JsonReader& reader, Camera& camera);
+void parseLights(JsonReader& reader, Lights& lights);
+void parseRender(JsonReader& reader, RenderSettings& render);
+/// Leaves `output.pattern` as written; parseScene resolves it against the scene's folder.
+void parseOutput(JsonReader& reader, OutputSettings& output);
+
+/// Reads a direction: 3 numbers in [-kMaxCoordinate, kMaxCoordinate], not all zero.
+std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required);
+
+} // namespace cutaway::scene_detail

@@ -1,0 +1,182 @@
+// The /volume and /transfer sections of a scene document.
+#include "scene/scene_sections.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <string>
+#include <system_error>
+
+namespace cutaway::scene_detail {
+
+namespace {
+
+// The phantom names of makePhantom (volume/phantom.hpp, phantomNames()). They
+// are repeated here so that the scene library does not need the volume
+// library's code at link time; keep the two lists in step.
+constexpr std::string_view kHead = "head";
+constexpr std::string_view kOrange = "orange";
+
+// Voxel type names as in volume.hpp's voxelTypeName(), parsed here for the same reason.
+struct VoxelTypeName {
+    std::string_view name;
+    VoxelType type;
+};
+constexpr VoxelTypeName kVoxelTypes[] = {
+    {"uint8", VoxelType::U8},    {"int8", VoxelType::I8},     {"uint16", VoxelType::U16},
+    {"int16", VoxelType::I16},   {"uint32", VoxelType::U32},  {"int32", VoxelType::I32},
+    {"float32", VoxelType::F32}, {"float64", VoxelType::F64},
+};
+
+/// Whether readVolume() knows the file's format from its name.
+bool hasVolumeExtension(const std::filesystem::path& path) {
+    std::string name = path.filename().string();
+    std::transform(name.begin(), name.end(), name.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    for (const std::string_view suffix : {".nrrd", ".nhdr", ".nii", ".nii.gz"}) {
+        if (name.size() > suffix.size() && name.ends_with(suffix)) return true;
+    }
+    return false;
+}
+
+/// /volume/raw: the layout of a headerless file.
+///
+///  * dims     [integer x3], voxels, each in [1, 65536], required
+///             Voxels along x, y, z (x fastest in the file).
+///  * type     string, required: "uint8", "int8", "uint16", "int16", "uint32",
+///             "int32", "float32" or "float64"
+///  * spacing  [number x3], mm, each in (0, 10000], default [1, 1, 1]
+///  * endian   string, "little" or "big", default "little"
+///  * offset   integer, bytes, >= 0, default 0: bytes to skip before the first voxel
+RawLayout parseRaw(JsonReader& reader) {
+    RawLayout raw;
+    if (const auto dims = reader.integers("dims", 3, 3, 1, 65536, true))
+        raw.dims = glm::ivec3(int((*dims)[0]), int((*dims)[1]), int((*dims)[2]));
+    const auto type = reader.string(
+        "type", {"uint8", "int8", "uint16", "int16", "uint32", "int32", "float32", "float64"},
+        true);
+    for (const VoxelTypeName& entry : kVoxelTypes) {
+        if (type && *type == entry.name) raw.type = entry.type;
+    }
+    raw.spacing = reader.vec3("spacing", raw.spacing, Range::openClosed(0.0, 1.0e4));
+    raw.bigEndian = reader.string("endian", "little", {"little", "big"}) == "big";
+    raw.offset = static_cast<std::uint64_t>(
+        reader.integer("offset", 0, 0, std::numeric_limits<std::int64_t>::max()));
+    return raw;
+}
+
+} // namespace
+
+/// /volume: where the scalar field comes from. Exactly one of `file` or
+/// `phantom` is required.
+///
+///  * file     string, path, required unless `phantom` is given
+///             A .nrrd, .nhdr, .nii or .nii.gz file, or a headerless file laid
+///             out as `raw` says. Relative paths are relative to the scene
+///             file's folder. The file must exist.
+///  * phantom  string, "head" or "orange", required unless `file` is given
+///             A built-in procedural volume (uint8 values, 1 mm voxels).
+///  * size     [integer x3], voxels, each in [8, 1024], default [128, 128, 128]
+///             The phantom's grid. Only with `phantom`.
+///  * raw      object, default none: the layout of a headerless file (see
+///             parseRaw above). Only with `file`.
+///  * spacing  [number x3], mm, each in (0, 10000], default: the file's (phantoms: 1 mm)
+///             Overrides the voxel spacing.
+///  * window   [number, number], volume values, lo < hi, each in [-1e30, 1e30],
+///             default: none (the volume's value range)
+///             The range of values of interest.
+void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem::path& baseDir) {
+    const bool hasFile = reader.has("file");
+    const bool hasPhantom = reader.has("phantom");
+    if (hasFile == hasPhantom) {
+        reader.errorHere(std::string("expected exactly one of \"file\" or \"phantom\", got ") +
+                         (hasFile ? "both" : "neither"));
+    }
+
+    if (const auto file = reader.string("file")) {
+        const std::filesystem::path path = (baseDir / *file).lexically_normal();
+        volume.file = path;
+        std::error_code ec;
+        const auto status = std::filesystem::status(path, ec);
+        if (!std::filesystem::exists(status)) {
+            reader.error("file", "no such file: " + path.string());
+        } else if (!std::filesystem::is_regular_file(status)) {
+            reader.error("file", "not a regular file: " + path.string());
+        } else if (!reader.has("raw") && !hasVolumeExtension(path)) {
+            reader.expected(reader.pointerOf("file"),
+                            "a .nrrd, .nhdr, .nii or .nii.gz file, or a \"raw\" layout for a "
+                            "headerless file",
+                            *reader.find("file"));
+        }
+    }
+    if (const auto phantom = reader.string("phantom", {kHead, kOrange})) volume.phantom = *phantom;
+
+    if (reader.has("size") && hasFile && !hasPhantom) {
+        reader.error("size", "only allowed with \"phantom\" (a file's grid comes from the file)");
+    } else if (const auto size = reader.integers("size", 3, 3, 8, 1024)) {
+        volume.phantomSize = glm::ivec3(int((*size)[0]), int((*size)[1]), int((*size)[2]));
+    }
+    if (reader.has("raw") && hasPhantom && !hasFile) {
+        reader.error("raw", "only allowed with \"file\"");
+    } else {
+        reader.object("raw", [&](JsonReader& raw) { volume.raw = parseRaw(raw); });
+    }
+
+    volume.spacing = reader.vec3("spacing", Range::openClosed(0.0, 1.0e4));
+    if (const auto window = reader.numbers("window", 2, 2, Range::closed(-kMaxValue, kMaxValue))) {
+        if ((*window)[0] < (*window)[1]) {
+            volume.window = std::array<double, 2>{(*window)[0], (*window)[1]};
+        } else {
+            reader.expected(reader.pointerOf("window"), "[lo, hi] with lo < hi",
+                            *reader.find("window"));
+        }
+    }
+}
+
+/// /transfer: the transfer function, piecewise linear between its points.
+///
+///  * points   array of at least 2 objects, required
+///             Control points in order of strictly increasing `value`. Below
+///             the first point the first point's colour and opacity apply,
+///             above the last point the last's.
+///    * value  number, volume value (after slope/intercept), in [-1e30, 1e30], required
+///    * color  [number x3], linear RGB, each in [0, 1], required
+///    * alpha  number, in [0, 1], required
+///             Opacity of a sample one reference step thick (the smallest
+///             voxel spacing); the renderer corrects it for the slice spacing.
+///
+/// Without a /transfer section: defaultTransfer(), a grey ramp from
+/// transparent at 0 to alpha 0.6 at 255 (suits 8-bit data).
+void parseTransfer(JsonReader& reader, TransferFunction& transfer) {
+    transfer.points.clear();
+    std::optional<double> previous;
+    reader.objects(
+        "points", 2, std::numeric_limits<std::size_t>::max(),
+        [&](JsonReader& point, std::size_t) {
+            TransferPoint result;
+            const auto value = point.number("value", Range::closed(-kMaxValue, kMaxValue), true);
+            if (value && previous && !(*value > *previous)) {
+                point.expected(point.pointerOf("value"),
+                               "a value greater than the previous point's (" +
+                                   formatNumber(*previous) + ")",
+                               *point.find("value"));
+            }
+            previous = value;
+            result.value = value.value_or(0.0);
+            result.color = point.colour("color", true).value_or(result.color);
+            result.alpha =
+                float(point.number("alpha", Range::closed(0.0, 1.0), true).value_or(0.0));
+            transfer.points.push_back(result);
+        },
+        true);
+}
+
+TransferFunction defaultTransfer() {
+    TransferFunction transfer;
+    transfer.points = {
+        TransferPoint{0.0, glm::vec3(0.9f), 0.0f},
+        TransferPoint{255.0, glm::vec3(0.9f), 0.6f},
+    };
+    return transfer;
+}
+
+} // namespace cutaway::scene_detail

@@ -1,0 +1,186 @@
+// loadScene: files, syntax errors, nesting bombs, the example scenes in
+// scenes/ and the bad scenes in tests/scene/bad/.
+#include "scene/scene_test_util.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <gtest/gtest.h>
+#include <map>
+#include <set>
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+using test::lines;
+using test::loadError;
+
+const fs::path kSourceDir = CUTAWAY_SOURCE_DIR;
+
+TEST(SceneLoad, LoadsAFileAndResolvesAgainstItsFolder) {
+    test::TempDir dir;
+    dir.write("data/scan.nrrd", "x");
+    const fs::path file = dir.write("scenes/a.json", R"({"version": 1,
+        "volume": {"file": "../data/scan.nrrd"}, "output": {"pattern": "out/a_####.exr"}})");
+    const Scene scene = loadScene(file);
+    EXPECT_EQ(scene.file, file);
+    EXPECT_EQ(scene.baseDir, dir.path() / "scenes");
+    EXPECT_EQ(scene.volume.file, dir.path() / "data/scan.nrrd");
+    EXPECT_EQ(scene.output.pattern, (dir.path() / "scenes/out/a_####.exr").string());
+    EXPECT_EQ(scene.document["volume"]["file"], "../data/scan.nrrd");
+}
+
+TEST(SceneLoad, RelativeSceneFileGivesAbsoluteBaseDir) {
+    test::TempDir dir;
+    dir.write("s/a.json", R"({"version": 1, "volume": {"phantom": "orange"}})");
+    const fs::path previous = fs::current_path();
+    fs::current_path(dir.path());
+    const Scene scene = loadScene("s/a.json");
+    fs::current_path(previous);
+    EXPECT_TRUE(scene.baseDir.is_absolute());
+    EXPECT_EQ(scene.baseDir, dir.path() / "s");
+    EXPECT_EQ(scene.file, fs::path("s/a.json"));
+}
+
+TEST(SceneLoad, MissingOrUnreadableFiles) {
+    test::TempDir dir;
+    const fs::path missing = dir.path() / "none.json";
+    EXPECT_EQ(loadError(missing),
+              missing.string() + ": cannot read scene (No such file or directory)");
+    EXPECT_EQ(loadError(dir.path()), dir.path().string() + ": cannot read scene (it is a folder)");
+}
+
+TEST(SceneLoad, ErrorsNameTheFile) {
+    test::TempDir dir;
+    const fs::path file = dir.write("a.json", R"({"version": 1, "volume": {"phantom": "x"}})");
+    EXPECT_EQ(loadError(file).rfind(file.string() + ": /volume/phantom: expected one of", 0), 0u);
+}
+
+TEST(SceneLoad, SyntaxErrorsNameLineAndColumn) {
+    test::TempDir dir;
+    const fs::path file = dir.write("a.json", "{\n  \"version\": 1,\n  \"volume\": {,\n}\n");
+    const std::string message = loadError(file);
+    EXPECT_EQ(message.rfind(file.string() + ":3:14: JSON syntax error: ", 0), 0u) << message;
+    EXPECT_EQ(lines(message).size(), 1u);
+
+    const fs::path empty = dir.write("empty.json", "");
+    EXPECT_EQ(loadError(empty).rfind(empty.string() + ":1:1: JSON syntax error: ", 0), 0u)
+        << loadError(empty);
+}
+
+TEST(SceneLoad, NumbersTooLargeForADoubleAreLocated) {
+    test::TempDir dir;
+    const fs::path file = dir.write("a.json", "{\"version\": 1,\n \"x\": 1e400}");
+    EXPECT_EQ(loadError(file),
+              file.string() + ":2:7: expected a number that fits a double, got 1e400");
+}
+
+TEST(SceneLoad, NestingBombIsRejectedQuickly) {
+    test::TempDir dir;
+    const std::string deep = std::string(10'000'000, '[') + std::string(10'000'000, ']');
+    const fs::path file = dir.write("bomb.json", deep);
+    const auto start = std::chrono::steady_clock::now();
+    const std::string message = loadError(file);
+    const auto elapsed = std::chrono::steady_clock::now() - start;
+    EXPECT_EQ(message, file.string() +
+                           ":1:65: nesting deeper than 64 levels (arrays and objects inside "
+                           "each other)");
+    EXPECT_LT(elapsed, std::chrono::seconds(2));
+}
+
+TEST(SceneLoad, EveryExampleSceneParses) {
+    std::vector<fs::path> scenes;
+    for (const auto& entry : fs::directory_iterator(kSourceDir / "scenes")) {
+        if (entry.path().extension() == ".json") scenes.push_back(entry.path());
+    }
+    std::sort(scenes.begin(), scenes.end());
+    ASSERT_GE(scenes.size(), 3u);
+    std::vector<std::string> skipped;
+    for (const fs::path& file : scenes) {
+        SCOPED_TRACE(file.string());
+        const std::string message = loadError(file);
+        if (message.empty()) continue;
+        // A scene that reads a real scan from ../shared/data: when that folder
+        // is absent the only problem may be the missing file.
+        const auto found = lines(message);
+        ASSERT_EQ(found.size(), 1u) << message;
+        EXPECT_NE(found[0].find(": /volume/file: no such file: "), std::string::npos) << message;
+        EXPECT_NE(found[0].find("shared/data/"), std::string::npos) << message;
+        skipped.push_back(file.filename().string());
+    }
+    if (!skipped.empty()) {
+        std::string names;
+        for (const auto& name : skipped)
+            names += " " + name;
+        GTEST_SKIP() << "scenes whose scan is absent (../shared/data not found):" << names;
+    }
+}
+
+TEST(SceneLoad, DemoSceneIsTheHeadPhantom) {
+    const Scene scene = loadScene(kSourceDir / "scenes/demo.json");
+    EXPECT_EQ(scene.volume.phantom, "head");
+    EXPECT_EQ(scene.volume.phantomSize, glm::ivec3(160));
+    EXPECT_EQ(scene.render.width, 512);
+    EXPECT_TRUE(scene.output.png);
+    EXPECT_EQ(scene.output.pattern, (kSourceDir / "out/demo_####.exr").lexically_normal().string());
+}
+
+// Each file in tests/scene/bad/ has exactly one mistake; the message must be
+// one line containing the expected text (usually the JSON pointer).
+const std::map<std::string, std::string> kBadScenes = {
+    {"01-missing-version.json", ": /version: missing; add \"version\": 1"},
+    {"02-unsupported-version.json", ": /version: unsupported version: expected 1, got 2"},
+    {"03-unknown-section.json", ": /rendr: unknown key (did you mean \"render\"?)"},
+    {"04-fov-wrong-type.json", ": /camera/fov: expected a number in (0, 170), got \"wide\""},
+    {"05-size-negative.json", ": /render/size/0: expected an integer in [1, 16384], got -5"},
+    {"06-no-volume-source.json", ": /volume: expected exactly one of \"file\" or \"phantom\""},
+    {"07-unknown-phantom.json", ": /volume/phantom: expected one of \"head\", \"orange\""},
+    {"08-missing-volume-file.json", ": /volume/file: no such file: "},
+    {"09-transfer-not-increasing.json",
+     ": /transfer/points/2/value: expected a value greater than the previous point's (90)"},
+    {"10-transfer-one-point.json", ": /transfer/points: expected an array of at least 2"},
+    {"11-colour-out-of-range.json", ": /transfer/points/1/color/0: expected a number in [0, 1]"},
+    {"12-orbit-and-look-at.json", ": /camera: expected at most one of \"orbit\" or \"look_at\""},
+    {"13-up-parallel-to-view.json", ": /camera/look_at/up: expected a direction not parallel"},
+    {"14-too-many-lights.json", ": /lights/directional: expected an array of at most 4"},
+    {"15-background-string.json", ": /render/background: expected an array of 3 or 4 numbers"},
+    {"16-reserved-operators.json", ": /operators: not supported yet by this version of cutaway"},
+    {"17-syntax-error.json", "17-syntax-error.json:4:10: JSON syntax error: "},
+    {"18-elevation-90.json", ": /camera/orbit/elevation: expected a number in (-90, 90)"},
+    {"19-pixel-type.json", ": /output/pixel_type: expected one of \"half\", \"float\""},
+    {"20-empty-pattern.json", ": /output/pattern: expected a non-empty string, got \"\""},
+    {"21-nesting-bomb.json", ": nesting deeper than 64 levels"},
+    {"22-unknown-key-typo.json", ": /camera/fovv: unknown key (did you mean \"fov\"?)"},
+    {"23-raw-with-phantom.json", ": /volume/raw: only allowed with \"file\""},
+    {"24-shading-enabled-string.json", ": /render/shading/enabled: expected true or false"},
+    {"25-huge-intensity.json",
+     ": /lights/directional/0/intensity: expected a number in [0, 10], got 1e+300"},
+    {"26-root-is-array.json", ": (root): expected an object (a scene), got [1,2,3]"},
+    {"27-number-overflow.json", ":4:32: expected a number that fits a double, got 1e400"},
+};
+
+TEST(SceneLoad, BadScenesGiveTheirOneError) {
+    const fs::path folder = kSourceDir / "tests/scene/bad";
+    std::set<std::string> files;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+        files.insert(entry.path().filename().string());
+    }
+    EXPECT_GE(files.size(), 15u);
+    for (const auto& [name, expected] : kBadScenes) {
+        EXPECT_TRUE(files.count(name)) << "missing bad scene " << name;
+    }
+    for (const std::string& name : files) {
+        SCOPED_TRACE(name);
+        const auto it = kBadScenes.find(name);
+        ASSERT_NE(it, kBadScenes.end()) << "add " << name << " to kBadScenes";
+        const fs::path file = folder / name;
+        const std::string message = loadError(file);
+        ASSERT_FALSE(message.empty()) << "loaded without error";
+        EXPECT_EQ(message.rfind(file.string(), 0), 0u) << message; // names the file first
+        EXPECT_NE(message.find(it->second), std::string::npos) << message;
+        EXPECT_EQ(lines(message).size(), 1u) << message;
+    }
+}
+
+} // namespace
+} // namespace cutaway
