@@ -1,12 +1,16 @@
 // cutaway: the command line. Argument handling only; the work is in the library.
 //
-//   cutaway render SCENE [-o PATTERN] [--size WxH] [--png] [--device NAME] [--quiet]
-//   cutaway validate SCENE
+//   cutaway render SCENE [-o PATTERN] [--frames A..B] [--shard I/N] [--size WxH]
+//                  [--set /json/pointer=VALUE ...] [--png] [--skip-existing] [--fail-fast]
+//                  [--device NAME] [--quiet]
+//   cutaway validate SCENE [--set ...]
 //   cutaway info FILE
 //   cutaway devices
 //
-// Exit codes: 0 success, 1 runtime failure, 2 bad input or usage.
+// Exit codes: 0 success, 1 runtime failure, 2 bad input or usage;
+// 128 + signal when interrupted by SIGINT or SIGTERM.
 #include <cstdio>
+#include <unistd.h>
 #include <iostream>
 #include <regex>
 
@@ -14,7 +18,10 @@
 
 #include "core/error.hpp"
 #include "gpu/context.hpp"
-#include "job/render_job.hpp"
+#include "interrupt.hpp"
+#include "job/sequence.hpp"
+#include "progress.hpp"
+#include "scene/animation.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 #include "volume_info.hpp"
@@ -39,29 +46,52 @@ glm::ivec2 parseSize(const std::string& text) {
 struct RenderArgs {
     std::string scene;
     std::string output;
+    std::string frames;
+    std::string shard;
     std::string size;
+    std::vector<std::string> sets;
     std::string device;
     bool png = false;
+    bool skipExisting = false;
+    bool failFast = false;
     bool quiet = false;
 };
 
-int runRender(const RenderArgs& args) {
-    cutaway::Scene scene = cutaway::loadScene(args.scene);
-    cutaway::job::RenderOverrides overrides;
-    if (!args.output.empty()) overrides.outputPattern = args.output;
-    if (!args.size.empty()) overrides.size = parseSize(args.size);
-    overrides.png = args.png;
-    cutaway::job::applyOverrides(scene, overrides);
+std::vector<cutaway::SceneSetting> parseSettings(const std::vector<std::string>& sets) {
+    std::vector<cutaway::SceneSetting> out;
+    for (const auto& s : sets) out.push_back(cutaway::parseSetting(s));
+    return out;
+}
 
-    cutaway::gpu::ContextOptions options;
-    options.deviceName = args.device;
-    cutaway::gpu::Context ctx(options);
-    if (!args.quiet) std::cerr << "cutaway: rendering on " << ctx.deviceName() << "\n";
-    for (const auto& frame : cutaway::job::renderScene(ctx, scene)) {
-        if (args.quiet) continue;
-        std::printf("wrote %s (%.2f s)\n", frame.exr.string().c_str(), frame.seconds);
-        if (frame.png) std::printf("wrote %s\n", frame.png->string().c_str());
+int runRender(const RenderArgs& args) {
+    namespace job = cutaway::job;
+    // Everything about the input is checked before a device is opened.
+    const cutaway::Scene scene = cutaway::loadScene(args.scene, parseSettings(args.sets));
+    job::SequenceOptions options;
+    if (!args.output.empty()) options.overrides.outputPattern = args.output;
+    if (!args.size.empty()) options.overrides.size = parseSize(args.size);
+    options.overrides.png = args.png;
+    if (!args.frames.empty()) options.frames = job::parseFrameRange(args.frames);
+    if (!args.shard.empty()) options.shard = job::parseShard(args.shard);
+    options.skipExisting = args.skipExisting;
+    options.failFast = args.failFast;
+
+    cutaway::cli::installInterruptHandlers();
+    cutaway::cli::Progress progress(args.quiet, isatty(STDERR_FILENO) != 0);
+    options.onFrame = [&](const job::FrameEvent& e) { progress.frame(e); };
+    options.stopRequested = [] { return cutaway::cli::interruptSignal() != 0; };
+
+    cutaway::gpu::ContextOptions contextOptions;
+    contextOptions.deviceName = args.device;
+    cutaway::gpu::Context ctx(contextOptions);
+    const job::SequenceSummary summary = job::renderSequence(ctx, scene, options);
+    progress.summary(summary);
+
+    if (const int sig = cutaway::cli::interruptSignal()) {
+        std::fprintf(stderr, "cutaway: interrupted by signal %d; finished frames are whole\n", sig);
+        return 128 + sig;
     }
+    if (summary.failed) return summary.anyBadInput ? kExitInput : kExitRuntime;
     return 0;
 }
 
@@ -77,15 +107,29 @@ int main(int argc, char** argv) {
     render->add_option("scene", renderArgs.scene, "Scene file (JSON)")->required();
     render->add_option("-o,--output", renderArgs.output,
                        "Output pattern, e.g. out/frame_####.exr (#### or %04d: frame number)");
+    render->add_option("--frames", renderArgs.frames,
+                       "Frames A..B (inclusive) or N; default: the scene's /animation/frames");
+    render->add_option("--shard", renderArgs.shard,
+                       "Render only frames f with f mod N == I, e.g. 2/8 (one machine of 8)");
     render->add_option("--size", renderArgs.size, "Image size WIDTHxHEIGHT, e.g. 512x512");
+    render->add_option("--set", renderArgs.sets,
+                       "Override a scene value: /json/pointer=VALUE (repeatable), "
+                       "e.g. --set /camera/orbit/azimuth=90");
     render->add_flag("--png", renderArgs.png, "Also write an sRGB PNG preview per frame");
+    render->add_flag("--skip-existing", renderArgs.skipExisting,
+                     "Leave frames whose output files exist (resume an interrupted run)");
+    render->add_flag("--fail-fast", renderArgs.failFast,
+                     "Stop at the first failed frame (default: render the others, exit non-zero)");
     render->add_option("--device", renderArgs.device,
                        "Vulkan device: a substring of its name (see `cutaway devices`)");
     render->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing but errors");
 
     std::string validateScene;
-    auto* validate = app.add_subcommand("validate", "Check a scene without rendering");
+    std::vector<std::string> validateSets;
+    auto* validate = app.add_subcommand(
+        "validate", "Check a scene and every frame of its animation, without rendering or a device");
     validate->add_option("scene", validateScene, "Scene file (JSON)")->required();
+    validate->add_option("--set", validateSets, "Override a scene value: /json/pointer=VALUE");
 
     std::string infoFile;
     auto* info = app.add_subcommand("info", "Describe a volume file (NRRD, NIfTI)");
@@ -103,8 +147,13 @@ int main(int argc, char** argv) {
     try {
         if (render->parsed()) return runRender(renderArgs);
         if (validate->parsed()) {
-            cutaway::loadScene(validateScene);
-            std::printf("%s: valid\n", validateScene.c_str());
+            const cutaway::Scene scene =
+                cutaway::loadScene(validateScene, parseSettings(validateSets));
+            const auto& a = scene.animation;
+            for (int f = a.firstFrame; f <= a.lastFrame && !a.tracks.empty(); ++f)
+                cutaway::sceneAtFrame(scene, f);
+            std::printf("%s: valid (frames %d..%d)\n", validateScene.c_str(), a.firstFrame,
+                        a.lastFrame);
             return 0;
         }
         if (info->parsed()) {

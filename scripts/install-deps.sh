@@ -8,9 +8,11 @@ packages=(
   build-essential cmake ninja-build pkg-config
   glslang-tools
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
-  libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev libbenchmark-dev zlib1g-dev
+  libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
+  libgtest-dev zlib1g-dev
 )
+# Added when their features land (see third_party_notes.md): libtinygltf-dev
+# for glTF tool meshes, libbenchmark-dev for bench/.
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,12 +1,9 @@
 #include "job/render_job.hpp"
 
-#include <chrono>
 #include <cstdio>
 #include <regex>
 
 #include "core/error.hpp"
-#include "io/exr.hpp"
-#include "io/png.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
 #include "volume/phantom.hpp"
@@ -80,29 +77,6 @@ Image renderPrepared(const gpu::Context& ctx, const Scene& scene, const Volume& 
 
 Image renderImage(const gpu::Context& ctx, const Scene& scene) {
     return renderPrepared(ctx, scene, loadSceneVolume(scene));
-}
-
-std::vector<FrameResult> renderScene(const gpu::Context& ctx, const Scene& scene) {
-    const auto start = std::chrono::steady_clock::now();
-    Image image = renderImage(ctx, scene);
-
-    FrameResult result;
-    result.frame = 0;
-    result.exr = expandPattern(scene.output.pattern, 0);
-    ExrOptions options;
-    options.halfFloat = scene.output.pixelType == PixelType::Half;
-    options.attributes = {{"cutaway/frame", "0"},
-                          {"cutaway/version", CUTAWAY_VERSION},
-                          {"cutaway/scene", scene.document.dump()}};
-    if (result.exr.has_parent_path()) std::filesystem::create_directories(result.exr.parent_path());
-    writeExr(result.exr, image, options);
-    if (scene.output.png) {
-        result.png = previewPath(result.exr);
-        writePng(*result.png, image);
-    }
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return {result};
 }
 
 } // namespace cutaway::job

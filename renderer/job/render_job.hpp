@@ -42,16 +42,6 @@ struct RenderOverrides {
 /// Applies overrides to a parsed scene (validated by the caller).
 void applyOverrides(Scene& scene, const RenderOverrides& overrides);
 
-struct FrameResult {
-    int frame = 0;
-    std::filesystem::path exr;
-    std::optional<std::filesystem::path> png;
-    double seconds = 0.0;
-};
-
-/// Renders the scene's single frame (frame 0) and writes it. Returns what was written.
-std::vector<FrameResult> renderScene(const gpu::Context& ctx, const Scene& scene);
-
 /// Renders one frame to an image without writing anything (tests, benchmark).
 Image renderImage(const gpu::Context& ctx, const Scene& scene);
 

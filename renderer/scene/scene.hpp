@@ -111,6 +111,35 @@ struct OutputSettings {
     bool png = false;                         ///< /output/png: also write an sRGB PNG preview
 };
 
+/// /animation/tracks/N/interpolation
+enum class Interpolation {
+    Linear, ///< straight lines between keys
+    Smooth, ///< Catmull-Rom: a C1 Hermite spline through the keys, tangents from the neighbours
+    Step    ///< holds each key's value until the next key
+};
+
+/// A key of a track: a frame number and a number or an array of numbers.
+struct Keyframe {
+    double frame = 0.0;
+    std::vector<double> value; ///< one entry for a number
+    bool isArray = false;      ///< written as an array (a vector), even of length 1
+};
+
+/// /animation/tracks/N: drives the value at a JSON pointer into the scene.
+struct Track {
+    std::string target; ///< JSON pointer, e.g. "/camera/orbit/azimuth"
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<Keyframe> keys; ///< strictly increasing frames, all values of one shape
+};
+
+/// /animation: the frames of a sequence and the tracks that change between them.
+struct Animation {
+    int firstFrame = 0; ///< /animation/frames[0]
+    int lastFrame = 0;  ///< /animation/frames[1], inclusive
+    double fps = 24.0;  ///< recorded in the EXR headers
+    std::vector<Track> tracks;
+};
+
 struct Scene {
     int version = 1;
     std::filesystem::path file;     ///< the scene file, empty when parsed from a string
@@ -121,6 +150,7 @@ struct Scene {
     Lights lights;
     RenderSettings render;
     OutputSettings output;
+    Animation animation;
     nlohmann::json document;        ///< the validated JSON as given (for EXR headers)
 };
 
@@ -132,7 +162,16 @@ struct Scene {
 Scene parseScene(const nlohmann::json& document, const std::filesystem::path& baseDir,
                  const std::string& source = "<string>");
 
-/// Reads a JSON file (syntax errors name line and column) and parses it.
-Scene loadScene(const std::filesystem::path& file);
+/// One `--set /json/pointer=VALUE` from the command line. VALUE is read as
+/// JSON (42, [1, 2, 3], true, "text") and, failing that, as a plain string.
+struct SceneSetting {
+    std::string pointer;
+    nlohmann::json value;
+};
+
+/// Reads a JSON file (syntax errors name line and column), writes `settings`
+/// into it (see applySettings in animation.hpp), and parses it. With settings,
+/// messages name the source as "FILE (with --set)".
+Scene loadScene(const std::filesystem::path& file, const std::vector<SceneSetting>& settings = {});
 
 } // namespace cutaway

@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/scene.hpp"
+#include "scene/animation.hpp"
 #include "scene/scene_sections.hpp"
 
 #include <cerrno>
@@ -99,7 +100,8 @@ void parseOutput(JsonReader& reader, OutputSettings& output) {
 ///  * lights     object, default: ambient 0.2 and a headlight 0.8 (scene_camera.cpp)
 ///  * render     object, default: 512 x 512, black background, shaded
 ///  * output     object, default: "cutaway_####.exr" next to the scene, half floats
-///  * labels, operators, meshes, animation: reserved for later versions; rejected.
+///  * animation  object, default: one frame, no tracks (scene_animation.cpp)
+///  * labels, operators, meshes: reserved for later versions; rejected.
 Scene parseScene(const nlohmann::json& document, const std::filesystem::path& baseDir,
                  const std::string& source) {
     using namespace scene_detail;
@@ -129,12 +131,13 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     root.object("lights", [&](JsonReader& reader) { parseLights(reader, scene.lights); });
     root.object("render", [&](JsonReader& reader) { parseRender(reader, scene.render); });
     root.object("output", [&](JsonReader& reader) { parseOutput(reader, scene.output); });
+    root.object("animation", [&](JsonReader& reader) { parseAnimation(reader, scene.animation); });
     // Relative output patterns (the default too) resolve against the scene's folder.
     const std::filesystem::path pattern(scene.output.pattern);
     if (pattern.is_relative() && !baseDir.empty())
         scene.output.pattern = (baseDir / pattern).lexically_normal().string();
 
-    for (const char* key : {"labels", "operators", "meshes", "animation"})
+    for (const char* key : {"labels", "operators", "meshes"})
         root.reserved(key);
     root.finish();
     diagnostics.throwIfAny();
@@ -143,7 +146,7 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     return scene;
 }
 
-Scene loadScene(const std::filesystem::path& file) {
+Scene loadScene(const std::filesystem::path& file, const std::vector<SceneSetting>& settings) {
     const std::string source = file.string();
     std::error_code ec;
     if (std::filesystem::is_directory(file, ec))
@@ -157,10 +160,11 @@ Scene loadScene(const std::filesystem::path& file) {
     text << stream.rdbuf();
     if (stream.bad()) throw InputError(source + ": cannot read scene (read error)");
 
-    const nlohmann::json document = parseJsonText(text.str(), source);
+    nlohmann::json document = parseJsonText(text.str(), source);
+    applySettings(document, settings);
     const std::filesystem::path absolute = std::filesystem::absolute(file, ec);
     const std::filesystem::path baseDir = (ec ? file : absolute).lexically_normal().parent_path();
-    Scene scene = parseScene(document, baseDir, source);
+    Scene scene = parseScene(document, baseDir, settings.empty() ? source : source + " (with --set)");
     scene.file = file;
     return scene;
 }

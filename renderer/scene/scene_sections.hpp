@@ -25,6 +25,8 @@ void parseRender(JsonReader& reader, RenderSettings& render);
 /// Leaves `output.pattern` as written; parseScene resolves it against the scene's folder.
 void parseOutput(JsonReader& reader, OutputSettings& output);
 
+void parseAnimation(JsonReader& reader, Animation& animation);
+
 /// Reads a direction: 3 numbers in [-kMaxCoordinate, kMaxCoordinate], not all zero.
 std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required);
 

@@ -1,0 +1,45 @@
+#include "progress.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace cutaway::cli {
+
+void Progress::frame(const job::FrameEvent& event) {
+    using Kind = job::FrameEvent::Kind;
+    if (event.kind == Kind::Failed) {
+        std::fprintf(stderr, "cutaway: frame %d failed: %s\n", event.frame, event.error.c_str());
+        return;
+    }
+    if (event.kind == Kind::Rendered) {
+        m_renderedSeconds += event.seconds;
+        ++m_rendered;
+    }
+    if (!m_verbose) return;
+    const int left = event.total - event.position;
+    const double eta = m_rendered ? left * m_renderedSeconds / m_rendered : 0.0;
+    if (event.kind == Kind::Skipped)
+        std::fprintf(stderr, "[%d/%d] frame %d: skipped, %s exists\n", event.position, event.total,
+                     event.frame, event.exr.string().c_str());
+    else
+        std::fprintf(stderr, "[%d/%d] frame %d: %s in %.2f s, ETA %.0f s\n", event.position,
+                     event.total, event.frame, event.exr.string().c_str(), event.seconds, eta);
+}
+
+void Progress::summary(const job::SequenceSummary& s) const {
+    if (!m_verbose) return;
+    std::vector<double> times = s.frameSeconds;
+    double median = 0.0;
+    if (!times.empty()) {
+        std::sort(times.begin(), times.end());
+        const std::size_t n = times.size();
+        median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+    }
+    std::fprintf(stderr,
+                 "cutaway: %d frame(s) rendered, %d skipped, %d failed%s in %.2f s "
+                 "(median %.2f s per frame)\n",
+                 s.rendered, s.skipped, s.failed, s.stopped ? ", interrupted" : "",
+                 s.totalSeconds, median);
+}
+
+} // namespace cutaway::cli

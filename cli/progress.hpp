@@ -1,0 +1,23 @@
+#pragma once
+// What a sequence run prints. On a terminal: a line per frame with its time
+// and an ETA, and a summary at the end. Not on a terminal, or with --quiet:
+// nothing but errors. Failed frames are always reported on stderr.
+#include <chrono>
+
+#include "job/sequence.hpp"
+
+namespace cutaway::cli {
+
+class Progress {
+public:
+    Progress(bool quiet, bool terminal) : m_verbose(!quiet && terminal) {}
+    void frame(const job::FrameEvent& event);
+    void summary(const job::SequenceSummary& summary) const;
+
+private:
+    bool m_verbose;
+    double m_renderedSeconds = 0.0;
+    int m_rendered = 0;
+};
+
+} // namespace cutaway::cli

@@ -1,0 +1,160 @@
+#include "job/sequence.hpp"
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <regex>
+
+#include "bake/gradient_bake.hpp"
+#include "core/error.hpp"
+#include "io/exr.hpp"
+#include "io/png.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/slice_renderer.hpp"
+#include "scene/animation.hpp"
+
+namespace cutaway::job {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void createOutputFolder(const std::filesystem::path& file) {
+    if (!file.has_parent_path()) return;
+    std::error_code ec;
+    std::filesystem::create_directories(file.parent_path(), ec);
+    if (ec)
+        throw RuntimeError("cannot create the output folder " + file.parent_path().string() +
+                           ": " + ec.message());
+}
+
+// The device-side state a run keeps between frames.
+class FrameRenderer {
+public:
+    explicit FrameRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx), m_renderer(ctx) {}
+
+    Image render(const Scene& scene) {
+        // A volume is identified by its /volume section: same section, same texture.
+        const std::string key = scene.document.value("volume", nlohmann::json()).dump();
+        if (!m_volume || key != m_volumeKey) {
+            m_volume.reset(); // free the old textures before making new ones
+            const Volume volume = loadSceneVolume(scene);
+            m_volume = std::make_unique<render::GpuVolume>(
+                render::prepareVolume(m_ctx, m_baker, volume, sceneWindow(scene, volume)));
+            m_volumeKey = key;
+        }
+        return m_renderer.render(scene, *m_volume);
+    }
+
+private:
+    const gpu::Context& m_ctx;
+    bake::GradientBaker m_baker;
+    render::SliceRenderer m_renderer;
+    std::unique_ptr<render::GpuVolume> m_volume;
+    std::string m_volumeKey;
+};
+
+} // namespace
+
+FrameRange parseFrameRange(const std::string& text) {
+    static const std::regex range("([0-9]{1,7})(?:\\.\\.([0-9]{1,7}))?");
+    std::smatch m;
+    if (!std::regex_match(text, m, range))
+        throw InputError("--frames: expected A..B or N with frame numbers >= 0, got \"" + text +
+                         "\"");
+    FrameRange r;
+    r.first = std::stoi(m[1].str());
+    r.last = m[2].matched ? std::stoi(m[2].str()) : r.first;
+    if (r.first > r.last)
+        throw InputError("--frames: expected A <= B, got \"" + text + "\"");
+    return r;
+}
+
+Shard parseShard(const std::string& text) {
+    static const std::regex form("([0-9]{1,6})/([0-9]{1,6})");
+    std::smatch m;
+    if (!std::regex_match(text, m, form))
+        throw InputError("--shard: expected I/N such as 0/4, got \"" + text + "\"");
+    Shard s{std::stoi(m[1].str()), std::stoi(m[2].str())};
+    if (s.count < 1 || s.index >= s.count)
+        throw InputError("--shard: expected 0 <= I < N, got \"" + text + "\"");
+    return s;
+}
+
+std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& options) {
+    const FrameRange range = options.frames.value_or(
+        FrameRange{scene.animation.firstFrame, scene.animation.lastFrame});
+    std::vector<int> frames;
+    for (int f = range.first; f <= range.last; ++f)
+        if (f % options.shard.count == options.shard.index) frames.push_back(f);
+    return frames;
+}
+
+SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
+                               const SequenceOptions& options) {
+    const auto runStart = Clock::now();
+    const auto stop = [&] { return options.stopRequested && options.stopRequested(); };
+    const std::vector<int> frames = framesToRender(scene, options);
+    SequenceSummary summary;
+    std::unique_ptr<FrameRenderer> renderer; // made on the first frame that needs it
+
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        if (stop()) {
+            summary.stopped = true;
+            break;
+        }
+        FrameEvent event;
+        event.frame = frames[i];
+        event.position = static_cast<int>(i) + 1;
+        event.total = static_cast<int>(frames.size());
+        const auto frameStart = Clock::now();
+        try {
+            Scene frameScene = sceneAtFrame(scene, event.frame);
+            applyOverrides(frameScene, options.overrides);
+            event.exr = expandPattern(frameScene.output.pattern, event.frame);
+            if (frameScene.output.png) event.png = previewPath(event.exr);
+            if (options.skipExisting && std::filesystem::exists(event.exr) &&
+                (!event.png || std::filesystem::exists(*event.png))) {
+                event.kind = FrameEvent::Kind::Skipped;
+                ++summary.skipped;
+                if (options.onFrame) options.onFrame(event);
+                continue;
+            }
+            if (!renderer) renderer = std::make_unique<FrameRenderer>(ctx);
+            Image image = renderer->render(frameScene);
+            if (stop()) { // the frame in flight is discarded, never written
+                summary.stopped = true;
+                break;
+            }
+            ExrOptions exr;
+            exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
+            exr.attributes = {{"cutaway/frame", std::to_string(event.frame)},
+                              {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
+                              {"cutaway/version", CUTAWAY_VERSION},
+                              {"cutaway/scene", frameScene.document.dump()}};
+            createOutputFolder(event.exr);
+            writeExr(event.exr, image, exr);
+            if (event.png) writePng(*event.png, image);
+            event.kind = FrameEvent::Kind::Rendered;
+            event.seconds = secondsSince(frameStart);
+            ++summary.rendered;
+            summary.frameSeconds.push_back(event.seconds);
+        } catch (const Error& e) {
+            event.kind = FrameEvent::Kind::Failed;
+            event.error = e.what();
+            event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
+            event.seconds = secondsSince(frameStart);
+            ++summary.failed;
+            summary.anyBadInput = summary.anyBadInput || event.badInput;
+        }
+        if (options.onFrame) options.onFrame(event);
+        if (event.kind == FrameEvent::Kind::Failed && options.failFast) break;
+    }
+    summary.totalSeconds = secondsSince(runStart);
+    return summary;
+}
+
+} // namespace cutaway::job

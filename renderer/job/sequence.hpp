@@ -1,0 +1,80 @@
+#pragma once
+// Renders the frames of a scene: a single illustration, the stages of a
+// procedure or a turntable. Frames are independent, so a long sequence can be
+// split over machines (shards) and resumed (skip existing files).
+//
+// What does not change between frames is not redone: the volume is loaded,
+// uploaded and its gradients baked once per distinct /volume section (once per
+// sequence unless a track animates the volume itself); the pipelines live for
+// the whole run.
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu/context.hpp"
+#include "job/render_job.hpp"
+#include "scene/scene.hpp"
+
+namespace cutaway::job {
+
+struct FrameRange {
+    int first = 0;
+    int last = 0; ///< inclusive
+};
+
+/// Parses "A..B" or "N" (frame numbers >= 0); throws InputError naming --frames.
+FrameRange parseFrameRange(const std::string& text);
+
+struct Shard {
+    int index = 0;
+    int count = 1;
+};
+
+/// Parses "I/N" with 0 <= I < N; throws InputError naming --shard.
+Shard parseShard(const std::string& text);
+
+/// What happened to one frame, reported as it happens.
+struct FrameEvent {
+    enum class Kind { Rendered, Skipped, Failed } kind = Kind::Rendered;
+    int frame = 0;
+    int position = 0; ///< 1-based among this run's frames
+    int total = 0;    ///< frames this run will visit
+    std::filesystem::path exr;
+    std::optional<std::filesystem::path> png;
+    double seconds = 0.0;
+    std::string error; ///< for Failed
+    bool badInput = false; ///< Failed because of the scene (exit 2) rather than at run time
+};
+
+struct SequenceOptions {
+    std::optional<FrameRange> frames; ///< default: the scene's /animation/frames
+    Shard shard;                      ///< this run renders frames with f mod count == index
+    bool skipExisting = false;        ///< leave frames whose files exist untouched
+    bool failFast = false;            ///< stop at the first failed frame
+    RenderOverrides overrides;
+    std::function<void(const FrameEvent&)> onFrame; ///< progress; may be empty
+    std::function<bool()> stopRequested;             ///< polled between steps; may be empty
+};
+
+struct SequenceSummary {
+    int rendered = 0;
+    int skipped = 0;
+    int failed = 0;
+    bool anyBadInput = false;
+    bool stopped = false;          ///< stopRequested() ended the run early
+    std::vector<double> frameSeconds; ///< of rendered frames
+    double totalSeconds = 0.0;
+};
+
+/// The frames this run visits, in order.
+std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& options);
+
+/// Renders and writes the frames. Per-frame errors are reported through
+/// onFrame and counted; a frame interrupted by stopRequested is discarded
+/// (never written). Errors that concern the whole run (no device) propagate.
+SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
+                               const SequenceOptions& options);
+
+} // namespace cutaway::job

@@ -1,0 +1,133 @@
+#include "scene/animation.hpp"
+
+#include <algorithm>
+
+#include "core/error.hpp"
+
+namespace cutaway {
+namespace {
+
+// Hermite basis on [0, 1].
+double hermite(double p0, double m0, double p1, double m1, double t) {
+    const double t2 = t * t, t3 = t2 * t;
+    return (2 * t3 - 3 * t2 + 1) * p0 + (t3 - 2 * t2 + t) * m0 + (-2 * t3 + 3 * t2) * p1 +
+           (t3 - t2) * m1;
+}
+
+// Catmull-Rom tangent at key k in value per frame, aware of uneven key
+// spacing; one-sided at the ends.
+double tangent(const std::vector<Keyframe>& keys, std::size_t k, std::size_t c) {
+    const std::size_t lo = k == 0 ? 0 : k - 1;
+    const std::size_t hi = std::min(k + 1, keys.size() - 1);
+    if (lo == hi) return 0.0;
+    return (keys[hi].value[c] - keys[lo].value[c]) / (keys[hi].frame - keys[lo].frame);
+}
+
+} // namespace
+
+// nlohmann would pad a too-short array with nulls: refuse instead.
+std::string pointerWriteProblem(const nlohmann::json& document, const std::string& target) {
+    const nlohmann::json* node = &document;
+    std::size_t start = 1;
+    while (node && start <= target.size()) {
+        const std::size_t end = std::min(target.find('/', start), target.size());
+        const std::string token = target.substr(start, end - start);
+        if (node->is_array()) {
+            const bool digits = !token.empty() && token.find_first_not_of("0123456789") ==
+                                                      std::string::npos;
+            if (!digits || token.size() > 9 || std::stoul(token) >= node->size())
+                return "\"" + token + "\" is not an index of an array of " +
+                       std::to_string(node->size());
+            node = &(*node)[std::stoul(token)];
+        } else if (node->is_object()) {
+            auto it = node->find(nlohmann::json::json_pointer("/" + token).back());
+            node = it == node->end() ? nullptr : &*it;
+        } else {
+            return "\"" + target.substr(0, start - 1) + "\" holds a value, not an object";
+        }
+        start = end + 1;
+    }
+    return {};
+}
+
+std::vector<double> evaluateTrack(const Track& track, double frame) {
+    const auto& keys = track.keys;
+    if (keys.empty()) return {};
+    if (frame <= keys.front().frame) return keys.front().value;
+    if (frame >= keys.back().frame) return keys.back().value;
+    const auto next = std::upper_bound(keys.begin(), keys.end(), frame,
+                                       [](double f, const Keyframe& k) { return f < k.frame; });
+    const std::size_t k1 = static_cast<std::size_t>(next - keys.begin()), k0 = k1 - 1;
+    const Keyframe& a = keys[k0];
+    const Keyframe& b = keys[k1];
+    if (track.interpolation == Interpolation::Step) return a.value;
+    const double span = b.frame - a.frame;
+    const double t = (frame - a.frame) / span;
+    std::vector<double> out(a.value.size());
+    for (std::size_t c = 0; c < out.size(); ++c) {
+        if (track.interpolation == Interpolation::Linear)
+            out[c] = a.value[c] + (b.value[c] - a.value[c]) * t;
+        else // tangents are per frame; the basis runs over the span in [0, 1]
+            out[c] = hermite(a.value[c], tangent(keys, k0, c) * span, b.value[c],
+                             tangent(keys, k1, c) * span, t);
+    }
+    return out;
+}
+
+nlohmann::json applyTracks(const nlohmann::json& document, const Animation& animation, int frame,
+                           const std::string& source) {
+    nlohmann::json out = document;
+    for (std::size_t i = 0; i < animation.tracks.size(); ++i) {
+        const Track& track = animation.tracks[i];
+        const std::vector<double> v = evaluateTrack(track, frame);
+        const bool isArray = !track.keys.empty() && track.keys.front().isArray;
+        nlohmann::json value = isArray ? nlohmann::json(v) : nlohmann::json(v.empty() ? 0.0 : v[0]);
+        const std::string problem = pointerWriteProblem(out, track.target);
+        if (!problem.empty())
+            throw InputError(source + ": /animation/tracks/" + std::to_string(i) +
+                             "/target: cannot write " + track.target + ": " + problem);
+        out[nlohmann::json::json_pointer(track.target)] = value;
+    }
+    return out;
+}
+
+SceneSetting parseSetting(const std::string& assignment) {
+    const std::size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0 || assignment[0] != '/')
+        throw InputError("--set " + assignment +
+                         ": expected /json/pointer=VALUE, e.g. /camera/orbit/azimuth=90");
+    SceneSetting setting;
+    setting.pointer = assignment.substr(0, eq);
+    try {
+        (void)nlohmann::json::json_pointer(setting.pointer);
+    } catch (const nlohmann::json::exception&) {
+        throw InputError("--set " + assignment + ": \"" + setting.pointer +
+                         "\" is not a JSON pointer");
+    }
+    const std::string text = assignment.substr(eq + 1);
+    setting.value = nlohmann::json::parse(text, nullptr, false);
+    if (setting.value.is_discarded()) setting.value = text;
+    return setting;
+}
+
+void applySettings(nlohmann::json& document, const std::vector<SceneSetting>& settings) {
+    for (const SceneSetting& s : settings) {
+        const std::string problem = pointerWriteProblem(document, s.pointer);
+        if (!problem.empty())
+            throw InputError("--set " + s.pointer + ": cannot write there: " + problem);
+        document[nlohmann::json::json_pointer(s.pointer)] = s.value;
+    }
+}
+
+Scene sceneAtFrame(const Scene& scene, int frame) {
+    if (scene.animation.tracks.empty()) return scene;
+    const std::string source =
+        (scene.file.empty() ? std::string("<string>") : scene.file.string()) + " (frame " +
+        std::to_string(frame) + ")";
+    Scene s = parseScene(applyTracks(scene.document, scene.animation, frame, source), scene.baseDir,
+                         source);
+    s.file = scene.file;
+    return s;
+}
+
+} // namespace cutaway

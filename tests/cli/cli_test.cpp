@@ -1,0 +1,169 @@
+// The cutaway binary end to end: exit codes, messages, files written and not
+// written. Every render runs with CUTAWAY_VALIDATION=1 and must print no
+// validation message.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include "io/exr.hpp"
+#include "volume/phantom.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CommandResult {
+    int code = -1;
+    std::string output; // stdout and stderr together
+};
+
+CommandResult run(const std::string& args) {
+    const std::string cmd = "CUTAWAY_VALIDATION=1 " + std::string(CUTAWAY_BINARY) + " " + args +
+                            " 2>&1";
+    CommandResult r;
+    FILE* pipe = popen(cmd.c_str(), "r");
+    if (!pipe) return r;
+    char buf[4096];
+    while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
+    const int status = pclose(pipe);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+class CliTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = fs::temp_directory_path() /
+                ("cutaway_cli_" + std::string(
+                                      ::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(m_dir);
+        fs::create_directories(m_dir);
+    }
+    void TearDown() override { fs::remove_all(m_dir); }
+
+    fs::path write(const std::string& name, const std::string& text) {
+        std::ofstream(m_dir / name) << text;
+        return m_dir / name;
+    }
+    std::vector<std::string> files(const fs::path& dir) const {
+        std::vector<std::string> names;
+        for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename());
+        std::sort(names.begin(), names.end());
+        return names;
+    }
+    fs::path m_dir;
+};
+
+const char* kSmallScene = R"({
+  "version": 1,
+  "volume": { "phantom": "orange", "size": [32, 32, 32] },
+  "camera": { "orbit": { "azimuth": 20, "elevation": 20 } },
+  "render": { "size": [48, 40] },
+  "output": { "pattern": "frames/orange_####.exr" }
+})";
+
+} // namespace
+
+TEST_F(CliTest, RenderWritesExrAndPngAndNothingElse) {
+    const fs::path scene = write("scene.json", kSmallScene);
+    CommandResult r = run("render " + scene.string() + " --png");
+    ASSERT_EQ(r.code, 0) << r.output;
+    // Not a terminal: nothing but errors.
+    EXPECT_TRUE(r.output.empty()) << r.output;
+    EXPECT_EQ(files(m_dir / "frames"),
+              (std::vector<std::string>{"orange_0000.exr", "orange_0000.png"}));
+    cutaway::Image img = cutaway::readExr(m_dir / "frames" / "orange_0000.exr");
+    EXPECT_EQ(img.width, 48);
+    EXPECT_EQ(img.height, 40);
+    EXPECT_FALSE(
+        cutaway::readExrStringAttribute(m_dir / "frames" / "orange_0000.exr", "cutaway/scene")
+            .empty());
+}
+
+TEST_F(CliTest, OutputAndSizeOverridesApply) {
+    const fs::path scene = write("scene.json", kSmallScene);
+    const fs::path out = m_dir / "other" / "x_%03d.exr";
+    CommandResult r = run("render " + scene.string() + " -o " + out.string() + " --size 20x10 -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(r.output.empty()) << "--quiet must print nothing: " << r.output;
+    cutaway::Image img = cutaway::readExr(m_dir / "other" / "x_000.exr");
+    EXPECT_EQ(img.width, 20);
+    EXPECT_EQ(img.height, 10);
+}
+
+TEST_F(CliTest, BadSceneExitsTwoNamingThePointerAndWritesNothing) {
+    const fs::path scene = write("scene.json", R"({
+      "version": 1, "volume": { "phantom": "orange", "size": [32, 32, 32] },
+      "render": { "size": [48, -4], "slice_spacing": "fine" },
+      "output": { "pattern": "frames/x_####.exr" } })");
+    CommandResult r = run("render " + scene.string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("/render/size/1"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("/render/slice_spacing"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames"));
+}
+
+TEST_F(CliTest, UsageErrorsExitTwo) {
+    const fs::path scene = write("scene.json", kSmallScene);
+    EXPECT_EQ(run("render " + scene.string() + " --size 0x5").code, 2);
+    EXPECT_EQ(run("render " + scene.string() + " --size big").code, 2);
+    EXPECT_EQ(run("render " + scene.string() + " --no-such-flag").code, 2);
+    EXPECT_EQ(run("render").code, 2);
+    EXPECT_EQ(run("").code, 2);
+    CommandResult missing = run("render " + (m_dir / "absent.json").string());
+    EXPECT_EQ(missing.code, 2);
+    EXPECT_NE(missing.output.find("absent.json"), std::string::npos) << missing.output;
+}
+
+TEST_F(CliTest, HelpExitsZero) {
+    for (const char* cmd : {"--help", "render --help", "validate --help", "info --help"}) {
+        CommandResult r = run(cmd);
+        EXPECT_EQ(r.code, 0) << cmd << ": " << r.output;
+        EXPECT_NE(r.output.find("Usage"), std::string::npos) << cmd;
+    }
+}
+
+TEST_F(CliTest, UnknownDeviceIsARuntimeErrorThatListsDevices) {
+    const fs::path scene = write("scene.json", kSmallScene);
+    CommandResult r = run("render " + scene.string() + " --device no-such-gpu");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("no Vulkan device fits"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames"));
+}
+
+TEST_F(CliTest, UnwritableOutputIsARuntimeErrorWithNoPartialFile) {
+    const fs::path scene = write("scene.json", kSmallScene);
+    write("blocker", "a file where a folder is expected");
+    CommandResult r = run("render " + scene.string() + " -o " + (m_dir / "blocker" / "x.exr").string());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("blocker"), std::string::npos) << r.output;
+    EXPECT_EQ(files(m_dir), (std::vector<std::string>{"blocker", "scene.json"}));
+}
+
+TEST_F(CliTest, ValidateChecksWithoutRendering) {
+    const fs::path good = write("good.json", kSmallScene);
+    CommandResult ok = run("validate " + good.string());
+    EXPECT_EQ(ok.code, 0) << ok.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames"));
+    const fs::path bad = write("bad.json", R"({ "version": 1, "volume": { "phantom": "pear" } })");
+    CommandResult r = run("validate " + bad.string());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.output.find("/volume/phantom"), std::string::npos) << r.output;
+}
+
+TEST_F(CliTest, InfoDescribesAVolume) {
+    cutaway::Phantom p = cutaway::makePhantom("head", glm::ivec3(24, 20, 16), glm::dvec3(1, 1, 2));
+    cutaway::writeNrrd(m_dir / "head.nrrd", p.values);
+    CommandResult r = run("info " + (m_dir / "head.nrrd").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("24 x 20 x 16"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("uint8"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("1 x 1 x 2 mm"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("histogram"), std::string::npos) << r.output;
+    CommandResult bad = run("info " + (m_dir / "nothing.nrrd").string());
+    EXPECT_EQ(bad.code, 2);
+}

@@ -1,0 +1,141 @@
+// Animation tracks: parsing, interpolation at and between keys for each mode,
+// and per-frame validation of the evaluated scene.
+#include <gtest/gtest.h>
+
+#include "scene/animation.hpp"
+#include "scene_test_util.hpp"
+
+namespace cutaway::test {
+namespace {
+
+Track track(Interpolation mode, std::vector<std::pair<double, double>> keys) {
+    Track t;
+    t.target = "/camera/orbit/azimuth";
+    t.interpolation = mode;
+    for (auto [f, v] : keys) t.keys.push_back({f, {v}, false});
+    return t;
+}
+
+double at(const Track& t, double frame) { return evaluateTrack(t, frame).at(0); }
+
+} // namespace
+
+TEST(Animation, LinearHitsKeysAndInterpolatesBetween) {
+    Track t = track(Interpolation::Linear, {{0, 10}, {10, 30}, {30, -10}});
+    EXPECT_DOUBLE_EQ(at(t, 0), 10);
+    EXPECT_DOUBLE_EQ(at(t, 10), 30);
+    EXPECT_DOUBLE_EQ(at(t, 30), -10);
+    EXPECT_DOUBLE_EQ(at(t, 5), 20);
+    EXPECT_DOUBLE_EQ(at(t, 20), 10);
+    EXPECT_DOUBLE_EQ(at(t, -5), 10);  // before the first key: held
+    EXPECT_DOUBLE_EQ(at(t, 100), -10); // after the last key: held
+}
+
+TEST(Animation, StepHoldsEachKeyUntilTheNext) {
+    Track t = track(Interpolation::Step, {{0, 1}, {4, 2}, {8, 3}});
+    EXPECT_DOUBLE_EQ(at(t, 0), 1);
+    EXPECT_DOUBLE_EQ(at(t, 3.999), 1);
+    EXPECT_DOUBLE_EQ(at(t, 4), 2);
+    EXPECT_DOUBLE_EQ(at(t, 7), 2);
+    EXPECT_DOUBLE_EQ(at(t, 8), 3);
+}
+
+TEST(Animation, SmoothPassesThroughKeysWithContinuousSlope) {
+    Track t = track(Interpolation::Smooth, {{0, 0}, {10, 10}, {15, 0}, {30, 5}});
+    for (const auto& k : t.keys) EXPECT_NEAR(at(t, k.frame), k.value[0], 1e-12);
+    // Catmull-Rom tangent at frame 10: (0 - 0) / (15 - 0) = 0, so a local maximum.
+    const double h = 1e-4;
+    EXPECT_NEAR((at(t, 10 + h) - at(t, 10 - h)) / (2 * h), 0.0, 1e-3);
+    // Slope continuous across key 15: left and right one-sided derivatives agree.
+    const double left = (at(t, 15) - at(t, 15 - h)) / h, right = (at(t, 15 + h) - at(t, 15)) / h;
+    EXPECT_NEAR(left, right, 1e-3);
+    // Collinear keys: smooth equals linear.
+    Track line = track(Interpolation::Smooth, {{0, 0}, {10, 20}, {20, 40}});
+    EXPECT_NEAR(at(line, 5), 10.0, 1e-12);
+    EXPECT_NEAR(at(line, 13), 26.0, 1e-12);
+    // Between keys 0 and 10 of the first track: values from the Hermite basis.
+    // m0 = (10 - 0) / 10 = 1 per frame, m1 = 0; at t = 0.5: 0.5*0 + 0.125*10*1 + 0.5*10 - 0.125*0 = 6.25
+    EXPECT_NEAR(at(t, 5), 6.25, 1e-12);
+}
+
+TEST(Animation, VectorsInterpolateComponentwise) {
+    Track t;
+    t.target = "/camera/orbit/target";
+    t.keys = {{0, {0, 0, 0}, true}, {10, {10, -20, 5}, true}};
+    EXPECT_EQ(evaluateTrack(t, 5), (std::vector<double>{5, -10, 2.5}));
+}
+
+TEST(Animation, TracksParseAndDriveTheSceneOfEachFrame) {
+    nlohmann::json doc = patched(R"({"animation": {"frames": [0, 36], "fps": 12, "tracks": [
+        {"target": "/camera/orbit/azimuth", "keys": [{"frame": 0, "value": 0},
+                                                     {"frame": 36, "value": 360}]},
+        {"target": "/lights/ambient", "interpolation": "step",
+         "keys": [{"frame": 0, "value": 0.1}, {"frame": 18, "value": 0.5}]}]}})");
+    Scene scene = parseScene(doc, "/nonexistent/scenes", "scene.json");
+    EXPECT_EQ(scene.animation.firstFrame, 0);
+    EXPECT_EQ(scene.animation.lastFrame, 36);
+    EXPECT_DOUBLE_EQ(scene.animation.fps, 12);
+    ASSERT_EQ(scene.animation.tracks.size(), 2u);
+    Scene f9 = sceneAtFrame(scene, 9);
+    EXPECT_DOUBLE_EQ(f9.camera.azimuthDeg, 90.0);
+    EXPECT_FLOAT_EQ(f9.lights.ambient, 0.1f);
+    EXPECT_EQ(f9.document["camera"]["orbit"]["azimuth"], 90.0); // the evaluated document
+    Scene f20 = sceneAtFrame(scene, 20);
+    EXPECT_FLOAT_EQ(f20.lights.ambient, 0.5f);
+}
+
+TEST(Animation, AFrameDrivenOutOfRangeIsReportedWithItsFrame) {
+    nlohmann::json doc = patched(R"({"animation": {"frames": [0, 10], "tracks": [
+        {"target": "/camera/fov", "keys": [{"frame": 0, "value": 30}, {"frame": 10, "value": 230}]}]}})");
+    Scene scene = parseScene(doc, "/nonexistent/scenes", "scene.json");
+    EXPECT_NO_THROW(sceneAtFrame(scene, 5)); // 130 degrees
+    try {
+        sceneAtFrame(scene, 9); // 210 degrees
+        FAIL() << "expected an error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("(frame 9): /camera/fov: expected a number"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(Animation, BadTracksAreReportedAtTheirPointers) {
+    EXPECT_NE(parseError(patched(R"({"animation": {"frames": [5, 2]}})")).find("/animation/frames"),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "camera", "keys": [{"frame": 0, "value": 1}]}]}})"))
+                  .find("/animation/tracks/0/target: expected a JSON pointer"),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/animation/fps", "keys": [{"frame": 0, "value": 1}]}]}})"))
+                  .find("/animation/tracks/0/target"),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/lights/ambient", "keys": [{"frame": 3, "value": 1}, {"frame": 3, "value": 0}]}]}})"))
+                  .find("/animation/tracks/0/keys/1/frame: expected a frame greater"),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/camera/orbit/target", "keys": [{"frame": 0, "value": [1, 2, 3]}, {"frame": 1, "value": 4}]}]}})"))
+                  .find("/animation/tracks/0/keys/1/value: expected the same shape"),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/lights/ambient", "interpolation": "cubic", "keys": [{"frame": 0, "value": 1}]}]}})"))
+                  .find("/animation/tracks/0/interpolation"),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/lights/ambient", "keys": []}]}})"))
+                  .find("/animation/tracks/0/keys"),
+              std::string::npos);
+}
+
+TEST(Animation, ATargetThatCannotBeWrittenNamesTheTrack) {
+    nlohmann::json doc = patched(R"({"transfer": {"points": [
+        {"value": 0, "color": [0,0,0], "alpha": 0}, {"value": 1, "color": [1,1,1], "alpha": 1}]},
+        "animation": {"tracks": [{"target": "/transfer/points/7/alpha",
+                                  "keys": [{"frame": 0, "value": 0.5}]}]}})");
+    Scene scene = parseScene(doc, "/nonexistent/scenes", "scene.json");
+    try {
+        sceneAtFrame(scene, 0);
+        FAIL() << "expected an error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/animation/tracks/0/target: cannot write"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+} // namespace cutaway::test
