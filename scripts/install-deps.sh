@@ -9,7 +9,7 @@ packages=(
   glslang-tools
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev zlib1g-dev
+  libgtest-dev zlib1g-dev python3-jsonschema
 )
 # Added when their features land (see third_party_notes.md): libtinygltf-dev
 # for glTF tool meshes, libbenchmark-dev for bench/.

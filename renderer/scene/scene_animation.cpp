@@ -3,6 +3,16 @@
 #include "scene/scene_sections.hpp"
 
 namespace cutaway::scene_detail {
+namespace {
+
+// Frames as a person wrote them: 10, not 10.0.
+std::string frameText(double frame) {
+    if (std::abs(frame) < 1e15 && frame == std::floor(frame))
+        return std::to_string(static_cast<long long>(frame));
+    return describeValue(frame);
+}
+
+} // namespace
 
 /// /animation: keyframe tracks that change the scene from frame to frame.
 ///
@@ -75,8 +85,7 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
                     const Keyframe& prev = track.keys.back();
                     if (!(key.frame > prev.frame))
                         k.error("frame", "expected a frame greater than the previous key's (" +
-                                             describeValue(prev.frame) + "), got " +
-                                             describeValue(key.frame));
+                                             frameText(prev.frame) + "), got " + frameText(key.frame));
                     if (!key.value.empty() && !prev.value.empty() &&
                         (key.value.size() != prev.value.size() || key.isArray != prev.isArray))
                         k.error("value", "expected the same shape as key " +
