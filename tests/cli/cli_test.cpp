@@ -7,8 +7,8 @@
 #include <string>
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
+#include "cli_util.hpp"
 #include "io/exr.hpp"
 #include "volume/phantom.hpp"
 
@@ -16,47 +16,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CommandResult {
-    int code = -1;
-    std::string output; // stdout and stderr together
-};
-
-CommandResult run(const std::string& args) {
-    const std::string cmd = "CUTAWAY_VALIDATION=1 " + std::string(CUTAWAY_BINARY) + " " + args +
-                            " 2>&1";
-    CommandResult r;
-    FILE* pipe = popen(cmd.c_str(), "r");
-    if (!pipe) return r;
-    char buf[4096];
-    while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-class CliTest : public ::testing::Test {
-protected:
-    void SetUp() override {
-        m_dir = fs::temp_directory_path() /
-                ("cutaway_cli_" + std::string(
-                                      ::testing::UnitTest::GetInstance()->current_test_info()->name()));
-        fs::remove_all(m_dir);
-        fs::create_directories(m_dir);
-    }
-    void TearDown() override { fs::remove_all(m_dir); }
-
-    fs::path write(const std::string& name, const std::string& text) {
-        std::ofstream(m_dir / name) << text;
-        return m_dir / name;
-    }
-    std::vector<std::string> files(const fs::path& dir) const {
-        std::vector<std::string> names;
-        for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename());
-        std::sort(names.begin(), names.end());
-        return names;
-    }
-    fs::path m_dir;
-};
+using cutaway::test::CliTest;
+using cutaway::test::CommandResult;
+CommandResult run(const std::string& args) { return cutaway::test::runCutaway(args); }
 
 const char* kSmallScene = R"({
   "version": 1,

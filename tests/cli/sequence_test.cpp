@@ -1,0 +1,220 @@
+// Sequences through the binary: turntables, shards, resuming, interruption,
+// per-frame failures, EXR headers; every example scene and bad scene.
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cli_util.hpp"
+#include "io/exr.hpp"
+#include "job/render_job.hpp"
+
+namespace fs = std::filesystem;
+
+namespace cutaway::test {
+namespace {
+
+// A 6-frame turntable of a small phantom; azimuth = 60 * frame.
+std::string turntable(int lastFrame = 5, int size = 24, int pixels = 32) {
+    const std::string end = std::to_string(lastFrame + 1);
+    return R"({ "version": 1,
+      "volume": { "phantom": "head", "size": [)" +
+           std::to_string(size) + "," + std::to_string(size) + "," + std::to_string(size) +
+           R"(] },
+      "camera": { "orbit": { "elevation": 10 } },
+      "render": { "size": [)" +
+           std::to_string(pixels) + "," + std::to_string(pixels) + R"(] },
+      "animation": { "frames": [0, )" +
+           std::to_string(lastFrame) + R"(], "tracks": [
+        { "target": "/camera/orbit/azimuth",
+          "keys": [ { "frame": 0, "value": 0 }, { "frame": )" +
+           end + R"(, "value": )" + std::to_string(60 * (lastFrame + 1)) + R"( } ] } ] },
+      "output": { "pattern": "frames/t_####.exr" } })";
+}
+
+std::vector<std::string> frameNames(int first, int last) {
+    std::vector<std::string> names;
+    for (int f = first; f <= last; ++f) names.push_back(job::expandPattern("t_####.exr", f));
+    return names;
+}
+
+using Stamps = std::map<std::string, fs::file_time_type>;
+Stamps stamps(const fs::path& dir) {
+    Stamps s;
+    for (const auto& e : fs::directory_iterator(dir))
+        s[e.path().filename().string()] = fs::last_write_time(e.path());
+    return s;
+}
+
+} // namespace
+
+TEST_F(CliTest, TurntableRendersEveryFrameWithItsHeader) {
+    const fs::path scene = write("turn.json", turntable());
+    CommandResult r = runCutaway("render " + scene.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    ASSERT_EQ(files(m_dir / "frames"), frameNames(0, 5));
+    const fs::path f3 = m_dir / "frames" / "t_0003.exr";
+    EXPECT_EQ(readExrStringAttribute(f3, "cutaway/frame"), "3");
+    EXPECT_FALSE(readExrStringAttribute(f3, "cutaway/version").empty());
+    const auto evaluated = nlohmann::json::parse(readExrStringAttribute(f3, "cutaway/scene"));
+    EXPECT_DOUBLE_EQ(evaluated["camera"]["orbit"]["azimuth"].get<double>(), 180.0);
+    // The view turns: frames 0 and 3 (opposite sides) differ.
+    Image a = readExr(m_dir / "frames" / "t_0000.exr"), b = readExr(f3);
+    double diff = 0.0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) diff += std::abs(a.rgba[i] - b.rgba[i]);
+    EXPECT_GT(diff, 1.0);
+}
+
+TEST_F(CliTest, ShardsTogetherWriteEachFrameExactlyOnce) {
+    const fs::path scene = write("turn.json", turntable(7));
+    std::multiset<std::string> all;
+    for (int i = 0; i < 3; ++i) {
+        const fs::path out = m_dir / ("shard" + std::to_string(i));
+        CommandResult r = runCutaway("render " + scene.string() + " --shard " +
+                                     std::to_string(i) + "/3 -o " + (out / "t_####.exr").string());
+        ASSERT_EQ(r.code, 0) << r.output;
+        for (const std::string& name : files(out)) {
+            const int frame = std::stoi(name.substr(2, 4));
+            EXPECT_EQ(frame % 3, i) << name << " rendered by shard " << i;
+            all.insert(name);
+        }
+    }
+    const auto expected = frameNames(0, 7);
+    EXPECT_EQ(all, std::multiset<std::string>(expected.begin(), expected.end()));
+}
+
+TEST_F(CliTest, SkipExistingRendersOnlyWhatIsMissing) {
+    const fs::path scene = write("turn.json", turntable());
+    ASSERT_EQ(runCutaway("render " + scene.string()).code, 0);
+    const Stamps before = stamps(m_dir / "frames");
+    CommandResult again = runCutaway("render " + scene.string() + " --skip-existing");
+    ASSERT_EQ(again.code, 0) << again.output;
+    EXPECT_EQ(stamps(m_dir / "frames"), before) << "--skip-existing rewrote a frame";
+
+    fs::remove(m_dir / "frames" / "t_0002.exr");
+    ASSERT_EQ(runCutaway("render " + scene.string() + " --skip-existing").code, 0);
+    Stamps after = stamps(m_dir / "frames");
+    ASSERT_EQ(after.size(), before.size());
+    for (const auto& [name, time] : before)
+        if (name != "t_0002.exr") EXPECT_EQ(after[name], time) << name;
+}
+
+TEST_F(CliTest, FramesOptionSelectsARange) {
+    const fs::path scene = write("turn.json", turntable());
+    CommandResult r = runCutaway("render " + scene.string() + " --frames 2..4");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(files(m_dir / "frames"), frameNames(2, 4));
+    EXPECT_EQ(runCutaway("render " + scene.string() + " --frames 4..2").code, 2);
+    EXPECT_EQ(runCutaway("render " + scene.string() + " --shard 3/3").code, 2);
+}
+
+TEST_F(CliTest, InterruptedSequenceLeavesOnlyWholeFrames) {
+    const fs::path scene = write("long.json", turntable(399, 48, 96));
+    // SIGINT after a second, mid-sequence; --preserve-status returns cutaway's own code.
+    CommandResult r = runCutaway("render " + scene.string(), "timeout --preserve-status -s INT 1");
+    EXPECT_EQ(r.code, 130) << r.output;
+    const auto names = files(m_dir / "frames");
+    ASSERT_LT(names.size(), 400u) << "the run was not interrupted";
+    EXPECT_EQ(names, frameNames(0, static_cast<int>(names.size()) - 1)) << "a gap or a stray file";
+    for (const std::string& name : names) {
+        Image img = readExr(m_dir / "frames" / name); // throws if truncated
+        EXPECT_EQ(img.width, 96) << name;
+    }
+}
+
+TEST_F(CliTest, AFailedFrameDoesNotStopTheOthersUnlessFailFast) {
+    // fov leaves its range (0, 170) after frame 3.
+    const fs::path scene = write("fov.json", R"({ "version": 1,
+      "volume": { "phantom": "head", "size": [16, 16, 16] },
+      "render": { "size": [16, 16] },
+      "animation": { "frames": [0, 5], "tracks": [ { "target": "/camera/fov",
+        "keys": [ { "frame": 0, "value": 100 }, { "frame": 5, "value": 200 } ] } ] },
+      "output": { "pattern": "frames/t_####.exr" } })");
+    CommandResult r = runCutaway("render " + scene.string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("frame 4 failed"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(frame 4): /camera/fov"), std::string::npos) << r.output;
+    EXPECT_EQ(files(m_dir / "frames"), frameNames(0, 3));
+
+    fs::remove_all(m_dir / "frames");
+    CommandResult fast = runCutaway("render " + scene.string() + " --frames 3..5 --fail-fast");
+    EXPECT_EQ(fast.code, 2) << fast.output;
+    EXPECT_EQ(fast.output.find("frame 5 failed"), std::string::npos) << fast.output;
+    EXPECT_EQ(files(m_dir / "frames"), frameNames(3, 3));
+}
+
+TEST_F(CliTest, SetOverridesAValueByPointer) {
+    const fs::path scene = write("turn.json", turntable());
+    CommandResult r = runCutaway("render " + scene.string() +
+                                 " --frames 0 --set /render/size=[20,10] --set /lights/ambient=0.5");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const fs::path f0 = m_dir / "frames" / "t_0000.exr";
+    EXPECT_EQ(readExr(f0).width, 20);
+    EXPECT_DOUBLE_EQ(
+        nlohmann::json::parse(readExrStringAttribute(f0, "cutaway/scene"))["lights"]["ambient"]
+            .get<double>(),
+        0.5);
+    CommandResult bad = runCutaway("render " + scene.string() + " --set /render/size/0=-3");
+    EXPECT_EQ(bad.code, 2);
+    EXPECT_NE(bad.output.find("/render/size/0"), std::string::npos) << bad.output;
+    EXPECT_EQ(runCutaway("render " + scene.string() + " --set render=1").code, 2);
+}
+
+TEST_F(CliTest, ValidateChecksEveryFrame) {
+    const fs::path scene = write("fov.json", R"({ "version": 1,
+      "volume": { "phantom": "head" },
+      "animation": { "frames": [0, 5], "tracks": [ { "target": "/camera/fov",
+        "keys": [ { "frame": 0, "value": 100 }, { "frame": 5, "value": 200 } ] } ] } })");
+    CommandResult r = runCutaway("validate " + scene.string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("(frame 4): /camera/fov"), std::string::npos) << r.output;
+}
+
+// Every scene in scenes/ renders at a small size (real scans: skipped when absent).
+TEST_F(CliTest, EveryExampleSceneRendersSmall) {
+    const fs::path scenes = fs::path(CUTAWAY_SOURCE_DIR) / "scenes";
+    int rendered = 0;
+    for (const auto& entry : fs::directory_iterator(scenes)) {
+        const std::string name = entry.path().filename().string();
+        if (entry.path().extension() != ".json" || name.find(".schema.") != std::string::npos)
+            continue;
+        SCOPED_TRACE(name);
+        const std::string text = [&] {
+            std::ifstream in(entry.path());
+            return std::string(std::istreambuf_iterator<char>(in), {});
+        }();
+        if (text.find("shared/data") != std::string::npos && !fs::exists(CUTAWAY_SHARED_DATA)) {
+            std::printf("skipped %s: %s not found\n", name.c_str(), CUTAWAY_SHARED_DATA);
+            continue;
+        }
+        const fs::path out = m_dir / (entry.path().stem().string() + "_####.exr");
+        CommandResult r = runCutaway("render " + entry.path().string() +
+                                     " --size 40x32 --frames 0 -o " + out.string());
+        ASSERT_EQ(r.code, 0) << r.output;
+        EXPECT_EQ(readExr(job::expandPattern(out.string(), 0)).width, 40);
+        ++rendered;
+    }
+    EXPECT_GE(rendered, 2);
+}
+
+// The bad-scene corpus through the binary: exit 2, the file and a location named.
+TEST_F(CliTest, EveryBadSceneExitsTwoNamingItsLocation) {
+    const fs::path bad = fs::path(CUTAWAY_SOURCE_DIR) / "tests" / "scene" / "bad";
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(bad)) {
+        SCOPED_TRACE(entry.path().filename().string());
+        CommandResult r = runCutaway("validate " + entry.path().string());
+        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_NE(r.output.find(entry.path().filename().string()), std::string::npos) << r.output;
+        const bool located = r.output.find(": /") != std::string::npos ||
+                             r.output.find(": (root)") != std::string::npos ||
+                             r.output.find(".json:") != std::string::npos;
+        EXPECT_TRUE(located) << r.output;
+        ++count;
+    }
+    EXPECT_GE(count, 30);
+}
+
+} // namespace cutaway::test
