@@ -20,6 +20,8 @@ void installInterruptHandlers() {
     std::signal(SIGTERM, onSignal);
 }
 
-int interruptSignal() { return g_signal.load(); }
+int interruptSignal() {
+    return g_signal.load();
+}
 
 } // namespace cutaway::cli

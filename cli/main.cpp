@@ -9,13 +9,6 @@
 //
 // Exit codes: 0 success, 1 runtime failure, 2 bad input or usage;
 // 128 + signal when interrupted by SIGINT or SIGTERM.
-#include <cstdio>
-#include <unistd.h>
-#include <iostream>
-#include <regex>
-
-#include <CLI/CLI.hpp>
-
 #include "core/error.hpp"
 #include "gpu/context.hpp"
 #include "interrupt.hpp"
@@ -25,6 +18,12 @@
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 #include "volume_info.hpp"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <regex>
+#include <unistd.h>
 
 namespace {
 
@@ -59,7 +58,8 @@ struct RenderArgs {
 
 std::vector<cutaway::SceneSetting> parseSettings(const std::vector<std::string>& sets) {
     std::vector<cutaway::SceneSetting> out;
-    for (const auto& s : sets) out.push_back(cutaway::parseSetting(s));
+    for (const auto& s : sets)
+        out.push_back(cutaway::parseSetting(s));
     return out;
 }
 
@@ -127,7 +127,8 @@ int main(int argc, char** argv) {
     std::string validateScene;
     std::vector<std::string> validateSets;
     auto* validate = app.add_subcommand(
-        "validate", "Check a scene and every frame of its animation, without rendering or a device");
+        "validate",
+        "Check a scene and every frame of its animation, without rendering or a device");
     validate->add_option("scene", validateScene, "Scene file (JSON)")->required();
     validate->add_option("--set", validateSets, "Override a scene value: /json/pointer=VALUE");
 
@@ -157,12 +158,14 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (info->parsed()) {
-            std::fputs(cutaway::cli::describeVolume(cutaway::readVolume(infoFile), infoFile).c_str(),
-                       stdout);
+            std::fputs(
+                cutaway::cli::describeVolume(cutaway::readVolume(infoFile), infoFile).c_str(),
+                stdout);
             return 0;
         }
         if (devices->parsed()) {
-            for (const auto& d : cutaway::gpu::listDevices()) std::printf("%s\n", d.c_str());
+            for (const auto& d : cutaway::gpu::listDevices())
+                std::printf("%s\n", d.c_str());
             return 0;
         }
     } catch (const cutaway::InputError& e) {

@@ -2,9 +2,9 @@
 // What a sequence run prints. On a terminal: a line per frame with its time
 // and an ETA, and a summary at the end. Not on a terminal, or with --quiet:
 // nothing but errors. Failed frames are always reported on stderr.
-#include <chrono>
-
 #include "job/sequence.hpp"
+
+#include <chrono>
 
 namespace cutaway::cli {
 

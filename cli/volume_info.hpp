@@ -1,9 +1,9 @@
 #pragma once
 // The text of `cutaway info FILE`: shape, type, spacing, value range and a
 // coarse histogram, enough to pick a transfer function's control points.
-#include <string>
-
 #include "volume/volume.hpp"
+
+#include <string>
 
 namespace cutaway::cli {
 

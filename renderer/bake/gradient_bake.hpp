@@ -2,11 +2,11 @@
 // The gradient bake: one compute dispatch over the volume texture writes an
 // RGBA8_SNORM texture of (unit gradient direction, magnitude); see
 // shaders/shared/gradient.h for the encoding.
-#include <glm/glm.hpp>
-
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 #include "gpu/resources.hpp"
+
+#include <glm/glm.hpp>
 
 namespace cutaway::bake {
 

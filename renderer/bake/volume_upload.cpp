@@ -1,9 +1,9 @@
 #include "bake/volume_upload.hpp"
 
+#include "core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
-
-#include "core/error.hpp"
 
 namespace cutaway::bake {
 
@@ -28,7 +28,8 @@ gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWind
                          VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     gpu::uploadImage(ctx, image, texels.data(), texels.size() * sizeof(uint16_t),
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     return image;
 }
 

@@ -2,13 +2,12 @@
 // Uploads a volume as a 3D R16_UNORM texture of the value normalized over a
 // window: texel = clamp((value - lo) / (hi - lo), 0, 1). Two bytes per voxel
 // whatever the source type, filterable on every Vulkan device.
-#include <vector>
-
-#include <glm/glm.hpp>
-
 #include "gpu/context.hpp"
 #include "gpu/resources.hpp"
 #include "volume/volume.hpp"
+
+#include <glm/glm.hpp>
+#include <vector>
 
 namespace cutaway::bake {
 

@@ -1,15 +1,16 @@
 #include "gpu/check.hpp"
 
-#include <filesystem>
-
 #include "core/error.hpp"
+
+#include <filesystem>
 
 namespace cutaway::gpu {
 
 const char* resultName(VkResult result) {
     switch (result) {
 #define CW_CASE(r)                                                                                 \
-    case r: return #r;
+    case r:                                                                                        \
+        return #r;
         CW_CASE(VK_SUCCESS)
         CW_CASE(VK_NOT_READY)
         CW_CASE(VK_TIMEOUT)
@@ -29,7 +30,8 @@ const char* resultName(VkResult result) {
         CW_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
         CW_CASE(VK_ERROR_UNKNOWN)
 #undef CW_CASE
-    default: return "VK_ERROR (unlisted code)";
+    default:
+        return "VK_ERROR (unlisted code)";
     }
 }
 

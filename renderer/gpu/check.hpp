@@ -2,7 +2,6 @@
 // VK_CHECK: every Vulkan call that returns a VkResult goes through it, so a
 // failure names the call, where it was made and the result code.
 #include <string>
-
 #include <vulkan/vulkan.h>
 
 namespace cutaway::gpu {

@@ -1,12 +1,12 @@
 #include "gpu/context.hpp"
 
-#include <cstdlib>
-#include <cstring>
-#include <iostream>
-
 #include "core/error.hpp"
 #include "gpu/check.hpp"
 #include "gpu/device_select.hpp"
+
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
 
 namespace cutaway::gpu {
 namespace {
@@ -131,7 +131,9 @@ Context::Context(const ContextOptions& options)
     }
 }
 
-Context::~Context() { release(); }
+Context::~Context() {
+    release();
+}
 
 void Context::release() noexcept {
     if (m_device) vkDeviceWaitIdle(m_device);
@@ -212,7 +214,8 @@ std::vector<std::string> listDevices() {
     std::vector<VkPhysicalDevice> devices(count);
     vkEnumeratePhysicalDevices(instance, &count, devices.data());
     std::vector<std::string> names;
-    for (VkPhysicalDevice d : devices) names.push_back(describeDevice(d));
+    for (VkPhysicalDevice d : devices)
+        names.push_back(describeDevice(d));
     vkDestroyInstance(instance, nullptr);
     return names;
 }

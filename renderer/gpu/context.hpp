@@ -11,16 +11,15 @@
 // Validation: with the Khronos validation layer on (ContextOptions::validation,
 // or CUTAWAY_VALIDATION=1 in the environment), every warning or error message
 // is printed to stderr and counted; tests fail when the count is not zero.
+#include "gpu/handle.hpp"
+
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
-
 #include <vulkan/vulkan.h>
-
-#include "gpu/handle.hpp"
 
 namespace cutaway::gpu {
 

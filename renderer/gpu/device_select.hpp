@@ -1,11 +1,10 @@
 #pragma once
 // Picks the physical device; separate from context.cpp so the rules are easy to read.
+#include "gpu/context.hpp"
+
 #include <string>
 #include <vector>
-
 #include <vulkan/vulkan.h>
-
-#include "gpu/context.hpp"
 
 namespace cutaway::gpu {
 

@@ -3,7 +3,6 @@
 // destroys its handle exactly once; declare members in creation order so they
 // are destroyed in reverse.
 #include <utility>
-
 #include <vulkan/vulkan.h>
 
 namespace cutaway::gpu {

@@ -14,8 +14,8 @@ ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words,
     return ShaderModuleHandle(ctx.device(), module);
 }
 
-DescriptorSetLayoutHandle createSetLayout(const Context& ctx,
-                                          const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+DescriptorSetLayoutHandle
+createSetLayout(const Context& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.bindingCount = static_cast<uint32_t>(bindings.size());
     info.pBindings = bindings.data();
@@ -25,7 +25,8 @@ DescriptorSetLayoutHandle createSetLayout(const Context& ctx,
 }
 
 PipelineLayoutHandle createPipelineLayout(const Context& ctx, VkDescriptorSetLayout setLayout,
-                                          uint32_t pushConstantBytes, VkShaderStageFlags pushStages) {
+                                          uint32_t pushConstantBytes,
+                                          VkShaderStageFlags pushStages) {
     VkPushConstantRange range{pushStages, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
     info.setLayoutCount = 1;

@@ -2,26 +2,25 @@
 // Small builders for the few pipelines cutaway has: shader modules from
 // embedded SPIR-V, descriptor set layouts from a list of bindings, compute
 // pipelines. The graphics pipeline lives with the renderer that uses it.
+#include "gpu/context.hpp"
+#include "gpu/handle.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
-
 #include <vulkan/vulkan.h>
-
-#include "gpu/context.hpp"
-#include "gpu/handle.hpp"
 
 namespace cutaway::gpu {
 
 /// `words` points at SPIR-V as generated into NAME_STAGE.spv.h.
-ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words,
-                                      std::size_t bytes);
+ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words, std::size_t bytes);
 
-DescriptorSetLayoutHandle createSetLayout(const Context& ctx,
-                                          const std::vector<VkDescriptorSetLayoutBinding>& bindings);
+DescriptorSetLayoutHandle
+createSetLayout(const Context& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings);
 
 PipelineLayoutHandle createPipelineLayout(const Context& ctx, VkDescriptorSetLayout setLayout,
-                                          uint32_t pushConstantBytes, VkShaderStageFlags pushStages);
+                                          uint32_t pushConstantBytes,
+                                          VkShaderStageFlags pushStages);
 
 PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
                                      VkShaderModule module);

@@ -1,9 +1,9 @@
 #include "gpu/resources.hpp"
 
-#include <cstring>
-
 #include "core/error.hpp"
 #include "gpu/check.hpp"
+
+#include <cstring>
 
 namespace cutaway::gpu {
 namespace {
@@ -46,8 +46,8 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
                   VkImageUsageFlags usage, VkImageAspectFlags aspect) {
     const auto& limits = ctx.properties().limits;
-    const uint32_t maxDim = type == VK_IMAGE_TYPE_3D ? limits.maxImageDimension3D
-                                                     : limits.maxImageDimension2D;
+    const uint32_t maxDim =
+        type == VK_IMAGE_TYPE_3D ? limits.maxImageDimension3D : limits.maxImageDimension2D;
     if (extent.width > maxDim || extent.height > maxDim || extent.depth > maxDim)
         throw RuntimeError("image of " + std::to_string(extent.width) + "x" +
                            std::to_string(extent.height) + "x" + std::to_string(extent.depth) +
@@ -129,8 +129,8 @@ void uploadImage(const Context& ctx, const Image& image, const void* data, std::
 
 std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkImageLayout layout,
                                      std::size_t bytesPerTexel) {
-    const std::size_t bytes = bytesPerTexel * image.extent.width * image.extent.height *
-                              image.extent.depth;
+    const std::size_t bytes =
+        bytesPerTexel * image.extent.width * image.extent.height * image.extent.depth;
     Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         transition(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,

@@ -2,13 +2,12 @@
 // Buffers and images with their own memory (one dedicated allocation each:
 // cutaway holds a handful of large resources, so a sub-allocator would buy
 // nothing), uploads through a staging buffer, and layout transitions.
-#include <cstddef>
-#include <vector>
-
-#include <vulkan/vulkan.h>
-
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
+
+#include <cstddef>
+#include <vector>
+#include <vulkan/vulkan.h>
 
 namespace cutaway::gpu {
 

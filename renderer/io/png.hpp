@@ -2,9 +2,9 @@
 // An 8-bit sRGB PNG preview of a linear premultiplied image, written with zlib
 // (no libpng). Colour is un-premultiplied and sRGB-encoded; alpha is kept, so a
 // transparent background stays transparent. Written atomically.
-#include <filesystem>
-
 #include "io/image.hpp"
+
+#include <filesystem>
 
 namespace cutaway {
 

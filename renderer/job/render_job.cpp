@@ -1,12 +1,12 @@
 #include "job/render_job.hpp"
 
-#include <cstdio>
-#include <regex>
-
 #include "core/error.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
 #include "volume/phantom.hpp"
+
+#include <cstdio>
+#include <regex>
 
 namespace cutaway::job {
 

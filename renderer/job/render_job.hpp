@@ -2,18 +2,17 @@
 // Runs a scene: loads its volume (a file or a phantom), prepares it on the
 // device once, renders frames and writes them (EXR, optional PNG preview).
 // The CLI is a thin layer over this; tests drive it directly.
-#include <filesystem>
-#include <optional>
-#include <string>
-#include <vector>
-
-#include <glm/glm.hpp>
-
 #include "bake/volume_upload.hpp"
 #include "gpu/context.hpp"
 #include "io/image.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
+
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace cutaway::job {
 

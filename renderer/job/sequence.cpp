@@ -1,10 +1,5 @@
 #include "job/sequence.hpp"
 
-#include <chrono>
-#include <map>
-#include <memory>
-#include <regex>
-
 #include "bake/gradient_bake.hpp"
 #include "core/error.hpp"
 #include "io/exr.hpp"
@@ -12,6 +7,11 @@
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
 #include "scene/animation.hpp"
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <regex>
 
 namespace cutaway::job {
 namespace {
@@ -27,8 +27,8 @@ void createOutputFolder(const std::filesystem::path& file) {
     std::error_code ec;
     std::filesystem::create_directories(file.parent_path(), ec);
     if (ec)
-        throw RuntimeError("cannot create the output folder " + file.parent_path().string() +
-                           ": " + ec.message());
+        throw RuntimeError("cannot create the output folder " + file.parent_path().string() + ": " +
+                           ec.message());
 }
 
 // The device-side state a run keeps between frames.
@@ -68,8 +68,7 @@ FrameRange parseFrameRange(const std::string& text) {
     FrameRange r;
     r.first = std::stoi(m[1].str());
     r.last = m[2].matched ? std::stoi(m[2].str()) : r.first;
-    if (r.first > r.last)
-        throw InputError("--frames: expected A <= B, got \"" + text + "\"");
+    if (r.first > r.last) throw InputError("--frames: expected A <= B, got \"" + text + "\"");
     return r;
 }
 
@@ -85,8 +84,8 @@ Shard parseShard(const std::string& text) {
 }
 
 std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& options) {
-    const FrameRange range = options.frames.value_or(
-        FrameRange{scene.animation.firstFrame, scene.animation.lastFrame});
+    const FrameRange range =
+        options.frames.value_or(FrameRange{scene.animation.firstFrame, scene.animation.lastFrame});
     std::vector<int> frames;
     for (int f = range.first; f <= range.last; ++f)
         if (f % options.shard.count == options.shard.index) frames.push_back(f);

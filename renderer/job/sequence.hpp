@@ -7,15 +7,15 @@
 // uploaded and its gradients baked once per distinct /volume section (once per
 // sequence unless a track animates the volume itself); the pipelines live for
 // the whole run.
+#include "gpu/context.hpp"
+#include "job/render_job.hpp"
+#include "scene/scene.hpp"
+
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include "gpu/context.hpp"
-#include "job/render_job.hpp"
-#include "scene/scene.hpp"
 
 namespace cutaway::job {
 
@@ -44,7 +44,7 @@ struct FrameEvent {
     std::filesystem::path exr;
     std::optional<std::filesystem::path> png;
     double seconds = 0.0;
-    std::string error; ///< for Failed
+    std::string error;     ///< for Failed
     bool badInput = false; ///< Failed because of the scene (exit 2) rather than at run time
 };
 
@@ -55,7 +55,7 @@ struct SequenceOptions {
     bool failFast = false;            ///< stop at the first failed frame
     RenderOverrides overrides;
     std::function<void(const FrameEvent&)> onFrame; ///< progress; may be empty
-    std::function<bool()> stopRequested;             ///< polled between steps; may be empty
+    std::function<bool()> stopRequested;            ///< polled between steps; may be empty
 };
 
 struct SequenceSummary {
@@ -63,7 +63,7 @@ struct SequenceSummary {
     int skipped = 0;
     int failed = 0;
     bool anyBadInput = false;
-    bool stopped = false;          ///< stopRequested() ended the run early
+    bool stopped = false;             ///< stopRequested() ended the run early
     std::vector<double> frameSeconds; ///< of rendered frames
     double totalSeconds = 0.0;
 };

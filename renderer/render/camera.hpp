@@ -1,9 +1,9 @@
 #pragma once
 // Camera matrices from the scene's camera: world (mm, volume centre at the
 // origin) -> Vulkan clip space, with image row 0 at the top and `up` pointing up.
-#include <glm/glm.hpp>
-
 #include "scene/scene.hpp"
+
+#include <glm/glm.hpp>
 
 namespace cutaway::render {
 
@@ -16,11 +16,11 @@ struct Box {
 };
 
 struct CameraMatrices {
-    glm::dmat4 view;      ///< world -> eye
-    glm::dmat4 proj;      ///< eye -> clip (Vulkan: y down, depth 0..1)
-    glm::dmat4 viewProj;  ///< world -> clip
-    glm::dvec3 eye;       ///< position (perspective) or a point behind the scene (orthographic)
-    glm::dvec3 forward;   ///< unit view direction
+    glm::dmat4 view;     ///< world -> eye
+    glm::dmat4 proj;     ///< eye -> clip (Vulkan: y down, depth 0..1)
+    glm::dmat4 viewProj; ///< world -> clip
+    glm::dvec3 eye;      ///< position (perspective) or a point behind the scene (orthographic)
+    glm::dvec3 forward;  ///< unit view direction
     bool perspective = true;
     double nearPlane = 0.0;
 };

@@ -1,7 +1,6 @@
 #include "render/gpu_volume.hpp"
 
 #include <algorithm>
-
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace cutaway::render {
@@ -11,7 +10,9 @@ glm::dmat4 GpuVolume::worldToTexture() const {
     return glm::scale(glm::dmat4(1.0), 1.0 / extent) * glm::translate(glm::dmat4(1.0), -box.lo);
 }
 
-double GpuVolume::smallestSpacing() const { return std::min({spacing.x, spacing.y, spacing.z}); }
+double GpuVolume::smallestSpacing() const {
+    return std::min({spacing.x, spacing.y, spacing.z});
+}
 
 GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,
                         const Volume& volume, bake::ValueWindow window) {

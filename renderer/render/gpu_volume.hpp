@@ -2,13 +2,13 @@
 // A volume as the renderer samples it: the value texture (uploaded once) and
 // its baked gradients, with the geometry that maps world space onto them.
 // Made once per sequence; frames only read it.
-#include <glm/glm.hpp>
-
 #include "bake/gradient_bake.hpp"
 #include "bake/volume_upload.hpp"
 #include "gpu/resources.hpp"
 #include "render/camera.hpp"
 #include "volume/volume.hpp"
+
+#include <glm/glm.hpp>
 
 namespace cutaway::render {
 

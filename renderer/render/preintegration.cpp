@@ -51,8 +51,8 @@ std::vector<glm::vec4> preintegrate(const std::vector<glm::vec4>& table, double 
                 colour += transmittance * a * glm::dvec3(m.colour);
                 transmittance *= 1.0 - a;
             }
-            out[static_cast<std::size_t>(b) * n + f] = glm::vec4(glm::vec3(colour),
-                                                                 1.0 - transmittance);
+            out[static_cast<std::size_t>(b) * n + f] =
+                glm::vec4(glm::vec3(colour), 1.0 - transmittance);
         }
     return out;
 }

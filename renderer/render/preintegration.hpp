@@ -6,9 +6,8 @@
 // (f, b) is the premultiplied colour and opacity of a ray segment of length
 // `segmentMm` along which the normalized value goes linearly from s_f (front)
 // to s_b (back), integrated with self-attenuation.
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace cutaway::render {
 

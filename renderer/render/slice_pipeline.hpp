@@ -3,10 +3,10 @@
 // RGBA float colour out with front-to-back premultiplied blending. A
 // depth-stencil attachment is declared (for the mesh pass and the per-slice
 // operator stencil) but slices neither test nor write depth yet.
-#include <vulkan/vulkan.h>
-
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
+
+#include <vulkan/vulkan.h>
 
 namespace cutaway::render {
 

@@ -1,16 +1,15 @@
 #include "render/slice_renderer.hpp"
 
-#include <cstring>
-
-#include <glm/gtc/packing.hpp>
-
 #include "core/error.hpp"
 #include "gpu/check.hpp"
+#include "render/preintegration.hpp"
 #include "render/slice_pipeline.hpp"
 #include "render/slicer.hpp"
-#include "render/preintegration.hpp"
 #include "render/transfer_table.hpp"
 #include "shared/frame.h"
+
+#include <cstring>
+#include <glm/gtc/packing.hpp>
 
 namespace cutaway::render {
 namespace {
@@ -25,8 +24,8 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
     const bool preintegrated = scene.render.classification == Classification::Preintegrated;
     const float n = static_cast<float>(preintegrated ? kPreintegrationSize : kTransferTableSize);
     // Texel centres: value 0 at the centre of entry 0, value 1 at the centre of entry n-1.
-    u.valueToTf = glm::vec4((n - 1.0f) / n, 0.5f / n, static_cast<float>(volume.smallestSpacing()),
-                            0.0f);
+    u.valueToTf =
+        glm::vec4((n - 1.0f) / n, 0.5f / n, static_cast<float>(volume.smallestSpacing()), 0.0f);
     const Shading& s = scene.render.shading;
     u.material = glm::vec4(scene.lights.ambient, s.diffuse, s.specular, s.shininess);
     u.headlight = glm::vec4(glm::vec3(scene.lights.headlight), 0.0f);
@@ -52,12 +51,14 @@ gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const Gpu
         width = height = kPreintegrationSize;
     }
     std::vector<uint64_t> halves(table.size());
-    for (std::size_t i = 0; i < table.size(); ++i) halves[i] = glm::packHalf4x16(table[i]);
-    gpu::Image image = gpu::createImage(
-        ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height, 1},
-        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    for (std::size_t i = 0; i < table.size(); ++i)
+        halves[i] = glm::packHalf4x16(table[i]);
+    gpu::Image image =
+        gpu::createImage(ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height, 1},
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     gpu::uploadImage(ctx, image, halves.data(), halves.size() * sizeof(uint64_t),
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
     return image;
 }
 
@@ -79,15 +80,16 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
 
 void SliceRenderer::ensureTargets(uint32_t width, uint32_t height) {
     if (m_color.image && m_color.extent.width == width && m_color.extent.height == height) return;
-    m_color = gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
-                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    m_depthStencil = gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil,
-                                      {width, height, 1},
-                                      VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                      VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
+    m_color =
+        gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
+                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    m_depthStencil =
+        gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil, {width, height, 1},
+                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                         VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
     const VkDeviceSize texel = m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
-    m_readback = gpu::createBuffer(m_ctx, texel * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                   true);
+    m_readback =
+        gpu::createBuffer(m_ctx, texel * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
 }
 
 void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
@@ -119,7 +121,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                                m_uniforms.buffer.get(), sizeof(uniforms));
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, volume.values.view.get(), ro, m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, volume.values.view.get(), ro,
+                              m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, volume.gradients.view.get(), ro,
                               m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, transfer.view.get(), ro, m_sampler.get());
@@ -128,7 +131,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         gpu::transition(cmd, m_color, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
                         VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                            VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
         gpu::transition(cmd, m_depthStencil, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
                         VK_ACCESS_2_NONE,
@@ -198,14 +202,16 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         std::memcpy(image.rgba.data(), m_readback.mapped, count * sizeof(float));
     } else {
         const auto* halves = static_cast<const uint16_t*>(m_readback.mapped);
-        for (std::size_t i = 0; i < count; ++i) image.rgba[i] = glm::unpackHalf1x16(halves[i]);
+        for (std::size_t i = 0; i < count; ++i)
+            image.rgba[i] = glm::unpackHalf1x16(halves[i]);
     }
     // The background lies behind everything: composite it "under" the volume.
     const glm::vec4 bg = scene.render.background;
     const glm::vec4 bgPremultiplied(glm::vec3(bg) * bg.w, bg.w);
     for (std::size_t i = 0; i < count; i += 4) {
         const float t = 1.0f - image.rgba[i + 3];
-        for (int c = 0; c < 4; ++c) image.rgba[i + c] += t * bgPremultiplied[c];
+        for (int c = 0; c < 4; ++c)
+            image.rgba[i + c] += t * bgPremultiplied[c];
     }
     return image;
 }

@@ -6,8 +6,6 @@
 // classifies, corrects opacity, shades and is composited with premultiplied
 // "under" blending (dst += (1 - dst.a) * src). The target is read back and the
 // background composited behind the volume on the CPU.
-#include <cstdint>
-
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 #include "gpu/pipeline.hpp"
@@ -15,6 +13,8 @@
 #include "io/image.hpp"
 #include "render/gpu_volume.hpp"
 #include "scene/scene.hpp"
+
+#include <cstdint>
 
 namespace cutaway::render {
 

@@ -3,11 +3,10 @@
 // direction at a fixed spacing, each intersected with a convex proxy (the
 // volume box) on the CPU. Only the covered polygon is rasterized: no
 // full-screen quads with discard (on lavapipe those cost ~6x).
-#include <vector>
+#include "render/camera.hpp"
 
 #include <glm/glm.hpp>
-
-#include "render/camera.hpp"
+#include <vector>
 
 namespace cutaway::render {
 

@@ -1,12 +1,11 @@
 #pragma once
 // The piecewise-linear transfer function tabulated over the value window, as
 // uploaded into an RGBA16F texture (colour straight, alpha per reference step).
-#include <vector>
-
-#include <glm/glm.hpp>
-
 #include "bake/volume_upload.hpp"
 #include "scene/scene.hpp"
+
+#include <glm/glm.hpp>
+#include <vector>
 
 namespace cutaway::render {
 

@@ -1,8 +1,8 @@
 #include "scene/animation.hpp"
 
-#include <algorithm>
-
 #include "core/error.hpp"
+
+#include <algorithm>
 
 namespace cutaway {
 namespace {
@@ -33,8 +33,8 @@ std::string pointerWriteProblem(const nlohmann::json& document, const std::strin
         const std::size_t end = std::min(target.find('/', start), target.size());
         const std::string token = target.substr(start, end - start);
         if (node->is_array()) {
-            const bool digits = !token.empty() && token.find_first_not_of("0123456789") ==
-                                                      std::string::npos;
+            const bool digits =
+                !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
             if (!digits || token.size() > 9 || std::stoul(token) >= node->size())
                 return "\"" + token + "\" is not an index of an array of " +
                        std::to_string(node->size());

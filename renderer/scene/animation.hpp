@@ -3,12 +3,11 @@
 // every track's value at f written at its target pointer, then parsed and
 // validated like any scene: anything numeric in a scene is animatable, and a
 // track that drives a value out of range is reported like a bad scene.
-#include <string>
-#include <vector>
+#include "scene/scene.hpp"
 
 #include <nlohmann/json.hpp>
-
-#include "scene/scene.hpp"
+#include <string>
+#include <vector>
 
 namespace cutaway {
 

@@ -6,26 +6,25 @@
 // axes scaled by its spacing, with the origin at the centre of the volume box
 // (so a 256^3 scan at 1 mm spans [-128, 128]^3). Scene JSON keys are
 // snake_case; see docs/scene-format.md for every key, range and default.
+#include "volume/volume.hpp"
+
 #include <array>
 #include <filesystem>
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
-#include <nlohmann/json.hpp>
-
-#include "volume/volume.hpp"
 
 namespace cutaway {
 
 /// /volume: where the scalar field comes from. Exactly one of file / phantom.
 struct VolumeSource {
-    std::filesystem::path file;         ///< resolved against the scene's folder; empty for a phantom
-    std::optional<RawLayout> raw;       ///< /volume/raw: layout of a headerless file
-    std::string phantom;                ///< /volume/phantom: "head" or "orange"
-    glm::ivec3 phantomSize{128};        ///< /volume/size (phantoms only), each in [8, 1024]
-    std::optional<glm::dvec3> spacing;  ///< /volume/spacing: overrides the file's, mm, > 0
+    std::filesystem::path file;        ///< resolved against the scene's folder; empty for a phantom
+    std::optional<RawLayout> raw;      ///< /volume/raw: layout of a headerless file
+    std::string phantom;               ///< /volume/phantom: "head" or "orange"
+    glm::ivec3 phantomSize{128};       ///< /volume/size (phantoms only), each in [8, 1024]
+    std::optional<glm::dvec3> spacing; ///< /volume/spacing: overrides the file's, mm, > 0
     std::optional<std::array<double, 2>> window; ///< /volume/window: [lo, hi] values, lo < hi
 };
 
@@ -51,14 +50,14 @@ enum class Projection { Perspective, Orthographic };
 /// look-at. Distance 0 means "fit the volume's bounding sphere in view".
 struct Camera {
     Projection projection = Projection::Perspective;
-    double fovDeg = 30.0;        ///< /camera/fov: vertical field of view, (0, 170)
-    double orthoHeight = 0.0;    ///< /camera/ortho_height: mm visible vertically; 0 = fit
+    double fovDeg = 30.0;     ///< /camera/fov: vertical field of view, (0, 170)
+    double orthoHeight = 0.0; ///< /camera/ortho_height: mm visible vertically; 0 = fit
     bool useOrbit = true;
     // orbit: eye = target + distance * (cos(el) sin(az), -cos(el) cos(az), sin(el)) in the
     // frame whose third axis is `up`; azimuth 0, elevation 0 looks along +y.
     double azimuthDeg = 0.0;
-    double elevationDeg = 0.0;   ///< (-90, 90)
-    double distance = 0.0;       ///< mm from target; 0 = fit
+    double elevationDeg = 0.0; ///< (-90, 90)
+    double distance = 0.0;     ///< mm from target; 0 = fit
     glm::dvec3 target{0.0};
     glm::dvec3 up{0.0, 0.0, 1.0};
     // look_at
@@ -73,8 +72,8 @@ struct DirectionalLight {
 
 /// /lights
 struct Lights {
-    float ambient = 0.2f;    ///< /lights/ambient, [0, 1]
-    float headlight = 0.8f;  ///< /lights/headlight: intensity of a white light at the eye, [0, 10]
+    float ambient = 0.2f;   ///< /lights/ambient, [0, 1]
+    float headlight = 0.8f; ///< /lights/headlight: intensity of a white light at the eye, [0, 10]
     std::vector<DirectionalLight> directional; ///< /lights/directional, at most 4
 };
 
@@ -94,9 +93,9 @@ enum class Classification { Preintegrated, Post };
 
 /// /render
 struct RenderSettings {
-    int width = 512;                 ///< /render/size[0], [1, 16384]
-    int height = 512;                ///< /render/size[1]
-    double sliceSpacing = 1.0;       ///< /render/slice_spacing: in voxels (smallest spacing), [0.05, 16]
+    int width = 512;           ///< /render/size[0], [1, 16384]
+    int height = 512;          ///< /render/size[1]
+    double sliceSpacing = 1.0; ///< /render/slice_spacing: in voxels (smallest spacing), [0.05, 16]
     glm::vec4 background{0, 0, 0, 1}; ///< /render/background: RGB(A) or "transparent" (0,0,0,0)
     Classification classification = Classification::Preintegrated;
     Shading shading;
@@ -142,8 +141,8 @@ struct Animation {
 
 struct Scene {
     int version = 1;
-    std::filesystem::path file;     ///< the scene file, empty when parsed from a string
-    std::filesystem::path baseDir;  ///< relative paths resolve against this
+    std::filesystem::path file;    ///< the scene file, empty when parsed from a string
+    std::filesystem::path baseDir; ///< relative paths resolve against this
     VolumeSource volume;
     TransferFunction transfer;
     Camera camera;
@@ -151,7 +150,7 @@ struct Scene {
     RenderSettings render;
     OutputSettings output;
     Animation animation;
-    nlohmann::json document;        ///< the validated JSON as given (for EXR headers)
+    nlohmann::json document; ///< the validated JSON as given (for EXR headers)
 };
 
 /// Parses and validates a scene document. Every problem found is reported at

@@ -1,6 +1,6 @@
-#include <cmath>
-
 #include "scene/scene_sections.hpp"
+
+#include <cmath>
 
 namespace cutaway::scene_detail {
 namespace {
@@ -51,10 +51,12 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
                 if (pointer.empty() || track.target.rfind("/animation", 0) == 0 ||
                     track.target == "/version")
                     t.error("target", "expected a pointer to a value of the scene outside "
-                                      "/animation and /version, got \"" + track.target + "\"");
+                                      "/animation and /version, got \"" +
+                                          track.target + "\"");
             } catch (const nlohmann::json::exception&) {
                 t.error("target", "expected a JSON pointer such as \"/camera/orbit/azimuth\", "
-                                  "got \"" + track.target + "\"");
+                                  "got \"" +
+                                      track.target + "\"");
             }
         }
         const std::string interpolation =
@@ -85,7 +87,8 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
                     const Keyframe& prev = track.keys.back();
                     if (!(key.frame > prev.frame))
                         k.error("frame", "expected a frame greater than the previous key's (" +
-                                             frameText(prev.frame) + "), got " + frameText(key.frame));
+                                             frameText(prev.frame) + "), got " +
+                                             frameText(key.frame));
                     if (!key.value.empty() && !prev.value.empty() &&
                         (key.value.size() != prev.value.size() || key.isArray != prev.isArray))
                         k.error("value", "expected the same shape as key " +

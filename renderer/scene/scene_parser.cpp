@@ -2,9 +2,9 @@
 // /render and /output sections. The other sections are parsed in
 // scene_volume.cpp and scene_camera.cpp.
 #include "core/error.hpp"
+#include "scene/animation.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/scene.hpp"
-#include "scene/animation.hpp"
 #include "scene/scene_sections.hpp"
 
 #include <cerrno>
@@ -164,7 +164,8 @@ Scene loadScene(const std::filesystem::path& file, const std::vector<SceneSettin
     applySettings(document, settings);
     const std::filesystem::path absolute = std::filesystem::absolute(file, ec);
     const std::filesystem::path baseDir = (ec ? file : absolute).lexically_normal().parent_path();
-    Scene scene = parseScene(document, baseDir, settings.empty() ? source : source + " (with --set)");
+    Scene scene =
+        parseScene(document, baseDir, settings.empty() ? source : source + " (with --set)");
     scene.file = file;
     return scene;
 }

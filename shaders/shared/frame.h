@@ -20,14 +20,15 @@ struct FrameUniforms {
     vec4 headlight;      // rgb: colour * intensity at the eye
     vec4 lightDir[CW_MAX_LIGHTS];   // xyz: unit direction TOWARD the light ; w unused
     vec4 lightColor[CW_MAX_LIGHTS]; // rgb: colour * intensity ; w unused
-    vec4 flags;          // x: number of directional lights ; y: shading on (1) / off (0)
-                         // z: 1 pre-integrated table (2D), 0 post-classification (1D)
+    vec4 flags;                     // x: number of directional lights ; y: shading on (1) / off (0)
+                                    // z: 1 pre-integrated table (2D), 0 post-classification (1D)
 };
 
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(cutaway::shader::FrameUniforms) == 2 * 64 + 5 * 16 + 2 * CW_MAX_LIGHTS * 16 + 16);
+static_assert(sizeof(cutaway::shader::FrameUniforms) ==
+              2 * 64 + 5 * 16 + 2 * CW_MAX_LIGHTS * 16 + 16);
 static_assert(offsetof(cutaway::shader::FrameUniforms, worldToTexture) == 64);
 static_assert(offsetof(cutaway::shader::FrameUniforms, eye) == 128);
 static_assert(offsetof(cutaway::shader::FrameUniforms, headlight) == 192);

@@ -8,7 +8,6 @@
 #ifdef __cplusplus
 #include <cstddef>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 namespace cutaway::shader {

@@ -16,9 +16,9 @@
 CW_NAMESPACE_BEGIN
 
 struct GradientParams {
-    ivec3 dims;          // voxels
+    ivec3 dims;           // voxels
     float magnitudeScale; // smallest spacing (mm) * 2: turns 1/mm into "per half-window per voxel"
-    vec3 halfInvSpacing; // 1 / (2 * spacing), 1/mm
+    vec3 halfInvSpacing;  // 1 / (2 * spacing), 1/mm
     float pad0;
 };
 

@@ -60,8 +60,8 @@ CW_FUNC Lighting lightSample(vec4 gradient, vec3 toEye, FrameUniforms u) {
     lit += vec3(u.headlight) * head.x;
     highlight += vec3(u.headlight) * head.y;
     for (int i = 0; i < int(u.flags.x); ++i) {
-        vec2 l = blinnPhong(n, vec3(u.lightDir[i]), toEye, u.material.y, u.material.z,
-                            u.material.w);
+        vec2 l =
+            blinnPhong(n, vec3(u.lightDir[i]), toEye, u.material.y, u.material.z, u.material.w);
         lit += vec3(u.lightColor[i]) * l.x;
         highlight += vec3(u.lightColor[i]) * l.y;
     }

@@ -1,16 +1,15 @@
 // The cutaway binary end to end: exit codes, messages, files written and not
 // written. Every render runs with CUTAWAY_VALIDATION=1 and must print no
 // validation message.
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <string>
-
-#include <gtest/gtest.h>
-
 #include "cli_util.hpp"
 #include "io/exr.hpp"
 #include "volume/phantom.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <string>
 
 namespace fs = std::filesystem;
 
@@ -18,7 +17,9 @@ namespace {
 
 using cutaway::test::CliTest;
 using cutaway::test::CommandResult;
-CommandResult run(const std::string& args) { return cutaway::test::runCutaway(args); }
+CommandResult run(const std::string& args) {
+    return cutaway::test::runCutaway(args);
+}
 
 const char* kSmallScene = R"({
   "version": 1,
@@ -100,7 +101,8 @@ TEST_F(CliTest, UnknownDeviceIsARuntimeErrorThatListsDevices) {
 TEST_F(CliTest, UnwritableOutputIsARuntimeErrorWithNoPartialFile) {
     const fs::path scene = write("scene.json", kSmallScene);
     write("blocker", "a file where a folder is expected");
-    CommandResult r = run("render " + scene.string() + " -o " + (m_dir / "blocker" / "x.exr").string());
+    CommandResult r =
+        run("render " + scene.string() + " -o " + (m_dir / "blocker" / "x.exr").string());
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("blocker"), std::string::npos) << r.output;
     EXPECT_EQ(files(m_dir), (std::vector<std::string>{"blocker", "scene.json"}));

@@ -4,11 +4,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <string>
-#include <vector>
-
 #include <gtest/gtest.h>
+#include <string>
 #include <sys/wait.h>
+#include <vector>
 
 namespace cutaway::test {
 
@@ -19,13 +18,14 @@ struct CommandResult {
 
 /// Runs `cutaway ARGS` (or `PREFIX cutaway ARGS`) through the shell.
 inline CommandResult runCutaway(const std::string& args, const std::string& prefix = "") {
-    const std::string cmd = "CUTAWAY_VALIDATION=1 " + prefix + " " + CUTAWAY_BINARY + " " + args +
-                            " 2>&1";
+    const std::string cmd =
+        "CUTAWAY_VALIDATION=1 " + prefix + " " + CUTAWAY_BINARY + " " + args + " 2>&1";
     CommandResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
     char buf[4096];
-    while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe)) r.output.append(buf, n);
+    while (std::size_t n = std::fread(buf, 1, sizeof buf, pipe))
+        r.output.append(buf, n);
     const int status = pclose(pipe);
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     return r;

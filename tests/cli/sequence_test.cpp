@@ -1,15 +1,14 @@
 // Sequences through the binary: turntables, shards, resuming, interruption,
 // per-frame failures, EXR headers; every example scene and bad scene.
-#include <filesystem>
-#include <map>
-#include <set>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include "cli_util.hpp"
 #include "io/exr.hpp"
 #include "job/render_job.hpp"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
 
 namespace fs = std::filesystem;
 
@@ -36,7 +35,8 @@ std::string turntable(int lastFrame = 5, int size = 24, int pixels = 32) {
 
 std::vector<std::string> frameNames(int first, int last) {
     std::vector<std::string> names;
-    for (int f = first; f <= last; ++f) names.push_back(job::expandPattern("t_####.exr", f));
+    for (int f = first; f <= last; ++f)
+        names.push_back(job::expandPattern("t_####.exr", f));
     return names;
 }
 
@@ -63,7 +63,8 @@ TEST_F(CliTest, TurntableRendersEveryFrameWithItsHeader) {
     // The view turns: frames 0 and 3 (opposite sides) differ.
     Image a = readExr(m_dir / "frames" / "t_0000.exr"), b = readExr(f3);
     double diff = 0.0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) diff += std::abs(a.rgba[i] - b.rgba[i]);
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+        diff += std::abs(a.rgba[i] - b.rgba[i]);
     EXPECT_GT(diff, 1.0);
 }
 
@@ -72,8 +73,8 @@ TEST_F(CliTest, ShardsTogetherWriteEachFrameExactlyOnce) {
     std::multiset<std::string> all;
     for (int i = 0; i < 3; ++i) {
         const fs::path out = m_dir / ("shard" + std::to_string(i));
-        CommandResult r = runCutaway("render " + scene.string() + " --shard " +
-                                     std::to_string(i) + "/3 -o " + (out / "t_####.exr").string());
+        CommandResult r = runCutaway("render " + scene.string() + " --shard " + std::to_string(i) +
+                                     "/3 -o " + (out / "t_####.exr").string());
         ASSERT_EQ(r.code, 0) << r.output;
         for (const std::string& name : files(out)) {
             const int frame = std::stoi(name.substr(2, 4));
@@ -97,8 +98,11 @@ TEST_F(CliTest, SkipExistingRendersOnlyWhatIsMissing) {
     ASSERT_EQ(runCutaway("render " + scene.string() + " --skip-existing").code, 0);
     Stamps after = stamps(m_dir / "frames");
     ASSERT_EQ(after.size(), before.size());
-    for (const auto& [name, time] : before)
-        if (name != "t_0002.exr") EXPECT_EQ(after[name], time) << name;
+    for (const auto& [name, time] : before) {
+        if (name != "t_0002.exr") {
+            EXPECT_EQ(after[name], time) << name;
+        }
+    }
 }
 
 TEST_F(CliTest, FramesOptionSelectsARange) {
@@ -147,8 +151,9 @@ TEST_F(CliTest, AFailedFrameDoesNotStopTheOthersUnlessFailFast) {
 
 TEST_F(CliTest, SetOverridesAValueByPointer) {
     const fs::path scene = write("turn.json", turntable());
-    CommandResult r = runCutaway("render " + scene.string() +
-                                 " --frames 0 --set /render/size=[20,10] --set /lights/ambient=0.5");
+    CommandResult r =
+        runCutaway("render " + scene.string() +
+                   " --frames 0 --set /render/size=[20,10] --set /lights/ambient=0.5");
     ASSERT_EQ(r.code, 0) << r.output;
     const fs::path f0 = m_dir / "frames" / "t_0000.exr";
     EXPECT_EQ(readExr(f0).width, 20);

@@ -1,10 +1,10 @@
 // The Vulkan context: device choice, clear reasons when nothing fits, and the
 // validation layer actually reporting (so "zero messages" means something).
-#include <gtest/gtest.h>
-
 #include "core/error.hpp"
 #include "gpu/context.hpp"
 #include "gpu_fixture.hpp"
+
+#include <gtest/gtest.h>
 
 namespace cutaway::test {
 
@@ -34,7 +34,8 @@ TEST(GpuContext, DeviceNameMatchesBySubstringIgnoringCase) {
     ASSERT_FALSE(devices.empty());
     const std::string name = devices.front().substr(0, devices.front().find(' '));
     std::string upper = name;
-    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    for (char& c : upper)
+        c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     gpu::ContextOptions options;
     options.deviceName = upper;
     gpu::Context ctx(options);

@@ -1,11 +1,11 @@
 #include "gpu_fixture.hpp"
 
-#include <cmath>
-
 #include "bake/gradient_bake.hpp"
 #include "job/render_job.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
+
+#include <cmath>
 
 namespace cutaway::test {
 

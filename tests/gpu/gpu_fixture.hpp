@@ -1,15 +1,14 @@
 #pragma once
 // Base of every test that touches a Vulkan device: one context per test with
 // the Khronos validation layer on; any validation message fails the test.
-#include <memory>
-#include <string>
-
-#include <gtest/gtest.h>
-
 #include "gpu/context.hpp"
 #include "io/image.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
+
+#include <gtest/gtest.h>
+#include <memory>
+#include <string>
 
 namespace cutaway::test {
 
@@ -22,7 +21,8 @@ protected:
     }
     void TearDown() override {
         if (!m_ctx) return;
-        for (const auto& m : m_ctx->validationMessages()) ADD_FAILURE() << m;
+        for (const auto& m : m_ctx->validationMessages())
+            ADD_FAILURE() << m;
         EXPECT_EQ(m_ctx->validationMessageCount(), 0u) << "validation layer messages";
         m_ctx.reset();
     }

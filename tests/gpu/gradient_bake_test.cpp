@@ -1,12 +1,11 @@
 // The GPU gradient bake against the CPU evaluation of the same shared header.
-#include <random>
-
-#include <gtest/gtest.h>
-
 #include "bake/gradient_bake.hpp"
 #include "bake/volume_upload.hpp"
 #include "gpu_fixture.hpp"
 #include "shared/gradient.h"
+
+#include <gtest/gtest.h>
+#include <random>
 
 namespace cutaway::test {
 namespace {
@@ -20,8 +19,8 @@ Volume randomVolume(glm::ivec3 dims, glm::dvec3 spacing, unsigned seed) {
     for (int z = 0; z < dims.z; ++z)
         for (int y = 0; y < dims.y; ++y)
             for (int x = 0; x < dims.x; ++x)
-                p[v.index(x, y, z)] = static_cast<uint16_t>(
-                    1000 * x + 700 * y * y / dims.y + 300 * z + noise(rng));
+                p[v.index(x, y, z)] =
+                    static_cast<uint16_t>(1000 * x + 700 * y * y / dims.y + 300 * z + noise(rng));
     return v;
 }
 

@@ -6,14 +6,13 @@
 //
 // To regenerate after an intended change, look at the new image first, then:
 //   CUTAWAY_UPDATE_REFERENCES=1 build/tests/test_gpu --gtest_filter='*Reference*'
-#include <cstdlib>
-#include <filesystem>
-
-#include <gtest/gtest.h>
-
 #include "gpu_fixture.hpp"
 #include "io/exr.hpp"
 #include "io/png.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <gtest/gtest.h>
 
 namespace cutaway::test {
 namespace {

@@ -1,14 +1,13 @@
 // Properties of the slicing renderer that a wrong implementation would break.
 // Images are small (tens of pixels) and phantoms coarse so lavapipe is quick.
-#include <algorithm>
-#include <cmath>
-#include <filesystem>
-
-#include <gtest/gtest.h>
-
 #include "gpu_fixture.hpp"
 #include "io/exr.hpp"
 #include "render/camera.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <gtest/gtest.h>
 
 namespace cutaway::test {
 namespace {
@@ -23,11 +22,13 @@ std::vector<glm::dvec2> convexHull(std::vector<glm::dvec2> pts) {
     std::vector<glm::dvec2> hull(2 * pts.size());
     std::size_t k = 0;
     for (std::size_t i = 0; i < pts.size(); ++i) {
-        while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+        while (k >= 2 && cross(hull[k - 2], hull[k - 1], pts[i]) <= 0)
+            --k;
         hull[k++] = pts[i];
     }
     for (std::size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
-        while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0) --k;
+        while (k >= t && cross(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0)
+            --k;
         hull[k++] = pts[i - 1];
     }
     hull.resize(k - 1);
@@ -46,7 +47,9 @@ double outsideDistance(const std::vector<glm::dvec2>& hull, glm::dvec2 p) {
     return d;
 }
 
-float alphaAt(const Image& img, int x, int y) { return img.pixel(x, y)[3]; }
+float alphaAt(const Image& img, int x, int y) {
+    return img.pixel(x, y)[3];
+}
 
 } // namespace
 
@@ -92,8 +95,8 @@ TEST_F(GpuTest, SymmetricPhantomUnderSymmetricViewGivesSymmetricImage) {
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width / 2; ++x)
             for (int c = 0; c < 4; ++c) {
-                worst = std::max(worst, std::abs(img.pixel(x, y)[c] -
-                                                 img.pixel(img.width - 1 - x, y)[c]));
+                worst = std::max(worst,
+                                 std::abs(img.pixel(x, y)[c] - img.pixel(img.width - 1 - x, y)[c]));
                 total += img.pixel(x, y)[c];
             }
     EXPECT_GT(total, 10.0f) << "image is empty";
@@ -105,8 +108,8 @@ TEST_F(GpuTest, SymmetricPhantomUnderSymmetricViewGivesSymmetricImage) {
     float asym = 0.0f;
     for (int y = 0; y < turned.height; ++y)
         for (int x = 0; x < turned.width / 2; ++x)
-            asym = std::max(asym, std::abs(turned.pixel(x, y)[3] -
-                                           turned.pixel(turned.width - 1 - x, y)[3]));
+            asym = std::max(
+                asym, std::abs(turned.pixel(x, y)[3] - turned.pixel(turned.width - 1 - x, y)[3]));
     EXPECT_GT(asym, 0.05f);
 }
 
@@ -139,7 +142,8 @@ TEST_F(GpuTest, AnisotropicSpacingKeepsASphereRound) {
     Scene scene = headScene(8, 96, 96);
     scene.camera.projection = Projection::Orthographic;
     scene.camera.orthoHeight = 64.0;
-    scene.transfer.points = {{0.0, {1, 1, 1}, 0.0f}, {90.0, {1, 1, 1}, 0.0f}, {110.0, {1, 1, 1}, 1.0f}};
+    scene.transfer.points = {
+        {0.0, {1, 1, 1}, 0.0f}, {90.0, {1, 1, 1}, 0.0f}, {110.0, {1, 1, 1}, 1.0f}};
     Image img = renderVolume(ctx(), scene, v);
 
     int minX = img.width, maxX = -1, minY = img.height, maxY = -1;

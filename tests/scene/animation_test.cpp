@@ -1,9 +1,9 @@
 // Animation tracks: parsing, interpolation at and between keys for each mode,
 // and per-frame validation of the evaluated scene.
-#include <gtest/gtest.h>
-
 #include "scene/animation.hpp"
 #include "scene_test_util.hpp"
+
+#include <gtest/gtest.h>
 
 namespace cutaway::test {
 namespace {
@@ -12,11 +12,14 @@ Track track(Interpolation mode, std::vector<std::pair<double, double>> keys) {
     Track t;
     t.target = "/camera/orbit/azimuth";
     t.interpolation = mode;
-    for (auto [f, v] : keys) t.keys.push_back({f, {v}, false});
+    for (auto [f, v] : keys)
+        t.keys.push_back({f, {v}, false});
     return t;
 }
 
-double at(const Track& t, double frame) { return evaluateTrack(t, frame).at(0); }
+double at(const Track& t, double frame) {
+    return evaluateTrack(t, frame).at(0);
+}
 
 } // namespace
 
@@ -27,7 +30,7 @@ TEST(Animation, LinearHitsKeysAndInterpolatesBetween) {
     EXPECT_DOUBLE_EQ(at(t, 30), -10);
     EXPECT_DOUBLE_EQ(at(t, 5), 20);
     EXPECT_DOUBLE_EQ(at(t, 20), 10);
-    EXPECT_DOUBLE_EQ(at(t, -5), 10);  // before the first key: held
+    EXPECT_DOUBLE_EQ(at(t, -5), 10);   // before the first key: held
     EXPECT_DOUBLE_EQ(at(t, 100), -10); // after the last key: held
 }
 
@@ -42,7 +45,8 @@ TEST(Animation, StepHoldsEachKeyUntilTheNext) {
 
 TEST(Animation, SmoothPassesThroughKeysWithContinuousSlope) {
     Track t = track(Interpolation::Smooth, {{0, 0}, {10, 10}, {15, 0}, {30, 5}});
-    for (const auto& k : t.keys) EXPECT_NEAR(at(t, k.frame), k.value[0], 1e-12);
+    for (const auto& k : t.keys)
+        EXPECT_NEAR(at(t, k.frame), k.value[0], 1e-12);
     // Catmull-Rom tangent at frame 10: (0 - 0) / (15 - 0) = 0, so a local maximum.
     const double h = 1e-4;
     EXPECT_NEAR((at(t, 10 + h) - at(t, 10 - h)) / (2 * h), 0.0, 1e-3);
@@ -54,7 +58,8 @@ TEST(Animation, SmoothPassesThroughKeysWithContinuousSlope) {
     EXPECT_NEAR(at(line, 5), 10.0, 1e-12);
     EXPECT_NEAR(at(line, 13), 26.0, 1e-12);
     // Between keys 0 and 10 of the first track: values from the Hermite basis.
-    // m0 = (10 - 0) / 10 = 1 per frame, m1 = 0; at t = 0.5: 0.5*0 + 0.125*10*1 + 0.5*10 - 0.125*0 = 6.25
+    // m0 = (10 - 0) / 10 = 1 per frame, m1 = 0; at t = 0.5: 0.5*0 + 0.125*10*1 + 0.5*10 - 0.125*0
+    // = 6.25
     EXPECT_NEAR(at(t, 5), 6.25, 1e-12);
 }
 
@@ -102,24 +107,41 @@ TEST(Animation, AFrameDrivenOutOfRangeIsReportedWithItsFrame) {
 TEST(Animation, BadTracksAreReportedAtTheirPointers) {
     EXPECT_NE(parseError(patched(R"({"animation": {"frames": [5, 2]}})")).find("/animation/frames"),
               std::string::npos);
-    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "camera", "keys": [{"frame": 0, "value": 1}]}]}})"))
-                  .find("/animation/tracks/0/target: expected a JSON pointer"),
-              std::string::npos);
-    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/animation/fps", "keys": [{"frame": 0, "value": 1}]}]}})"))
-                  .find("/animation/tracks/0/target"),
-              std::string::npos);
-    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/lights/ambient", "keys": [{"frame": 3, "value": 1}, {"frame": 3, "value": 0}]}]}})"))
-                  .find("/animation/tracks/0/keys/1/frame: expected a frame greater"),
-              std::string::npos);
-    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/camera/orbit/target", "keys": [{"frame": 0, "value": [1, 2, 3]}, {"frame": 1, "value": 4}]}]}})"))
-                  .find("/animation/tracks/0/keys/1/value: expected the same shape"),
-              std::string::npos);
-    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/lights/ambient", "interpolation": "cubic", "keys": [{"frame": 0, "value": 1}]}]}})"))
-                  .find("/animation/tracks/0/interpolation"),
-              std::string::npos);
-    EXPECT_NE(parseError(patched(R"({"animation": {"tracks": [{"target": "/lights/ambient", "keys": []}]}})"))
-                  .find("/animation/tracks/0/keys"),
-              std::string::npos);
+    EXPECT_NE(
+        parseError(
+            patched(
+                R"({"animation": {"tracks": [{"target": "camera", "keys": [{"frame": 0, "value": 1}]}]}})"))
+            .find("/animation/tracks/0/target: expected a JSON pointer"),
+        std::string::npos);
+    EXPECT_NE(
+        parseError(
+            patched(
+                R"({"animation": {"tracks": [{"target": "/animation/fps", "keys": [{"frame": 0, "value": 1}]}]}})"))
+            .find("/animation/tracks/0/target"),
+        std::string::npos);
+    EXPECT_NE(
+        parseError(
+            patched(
+                R"({"animation": {"tracks": [{"target": "/lights/ambient", "keys": [{"frame": 3, "value": 1}, {"frame": 3, "value": 0}]}]}})"))
+            .find("/animation/tracks/0/keys/1/frame: expected a frame greater"),
+        std::string::npos);
+    EXPECT_NE(
+        parseError(
+            patched(
+                R"({"animation": {"tracks": [{"target": "/camera/orbit/target", "keys": [{"frame": 0, "value": [1, 2, 3]}, {"frame": 1, "value": 4}]}]}})"))
+            .find("/animation/tracks/0/keys/1/value: expected the same shape"),
+        std::string::npos);
+    EXPECT_NE(
+        parseError(
+            patched(
+                R"({"animation": {"tracks": [{"target": "/lights/ambient", "interpolation": "cubic", "keys": [{"frame": 0, "value": 1}]}]}})"))
+            .find("/animation/tracks/0/interpolation"),
+        std::string::npos);
+    EXPECT_NE(
+        parseError(
+            patched(R"({"animation": {"tracks": [{"target": "/lights/ambient", "keys": []}]}})"))
+            .find("/animation/tracks/0/keys"),
+        std::string::npos);
 }
 
 TEST(Animation, ATargetThatCannotBeWrittenNamesTheTrack) {
