@@ -1,0 +1,131 @@
+#include "volume/io_util.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <system_error>
+
+#include "core/error.hpp"
+
+namespace cutaway::detail {
+
+namespace {
+
+std::string prefix(std::string_view context) { return std::string(context) + ": "; }
+
+} // namespace
+
+std::size_t checkedByteCount(const std::int64_t sizes[3], VoxelType type,
+                             std::string_view context) {
+    static constexpr const char* kAxis[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+        if (sizes[a] < 1) {
+            throw InputError(prefix(context) + "size along " + kAxis[a] + " is " +
+                             std::to_string(sizes[a]) + " (sizes must each be >= 1)");
+        }
+        if (sizes[a] > std::numeric_limits<int>::max()) {
+            throw InputError(prefix(context) + "size along " + kAxis[a] + " is " +
+                             std::to_string(sizes[a]) + ": volume too large");
+        }
+    }
+    // Each factor is < 2^31, so checking after every multiplication cannot overflow.
+    std::uint64_t voxels = 1;
+    for (int a = 0; a < 3; ++a) {
+        voxels *= static_cast<std::uint64_t>(sizes[a]);
+        if (voxels > kMaxVoxels) {
+            throw InputError(prefix(context) + "volume too large: " + std::to_string(sizes[0]) +
+                             "x" + std::to_string(sizes[1]) + "x" + std::to_string(sizes[2]) +
+                             " exceeds the limit of 2^31 voxels");
+        }
+    }
+    const std::uint64_t bytes = voxels * voxelSize(type);
+    if (bytes > kMaxBytes) {
+        throw InputError(prefix(context) + "volume too large: " + std::to_string(bytes) +
+                         " bytes of voxel data exceeds the limit of 8 GiB");
+    }
+    return static_cast<std::size_t>(bytes);
+}
+
+void checkSpacing(double spacing, int axis, std::string_view context) {
+    static constexpr const char* kAxis[3] = {"x", "y", "z"};
+    if (!std::isfinite(spacing) || spacing <= 0.0) {
+        throw InputError(prefix(context) + "spacing along " + kAxis[axis] + " is " +
+                         formatDouble(spacing) + " (spacing must be finite and > 0)");
+    }
+}
+
+std::uint64_t regularFileSize(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) {
+        throw InputError(path.string() + ": no such file");
+    }
+    if (std::filesystem::is_directory(status)) {
+        throw InputError(path.string() + ": is a directory, not a volume file");
+    }
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) {
+        throw InputError(path.string() + ": cannot read (" + ec.message() + ")");
+    }
+    return size;
+}
+
+std::ifstream openBinary(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw InputError(path.string() + ": cannot open for reading");
+    }
+    return in;
+}
+
+std::size_t readSome(std::istream& in, std::byte* dst, std::size_t size) {
+    // Reads in chunks so a size beyond std::streamsize is still fine.
+    std::size_t done = 0;
+    constexpr std::size_t kChunk = std::size_t{1} << 30;
+    while (done < size && in) {
+        const std::size_t want = std::min(kChunk, size - done);
+        in.read(reinterpret_cast<char*>(dst + done), static_cast<std::streamsize>(want));
+        const auto got = static_cast<std::size_t>(in.gcount());
+        done += got;
+        if (got < want) break;
+    }
+    return done;
+}
+
+bool parseInt(std::string_view text, std::int64_t& value) {
+    if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+    if (text.empty()) return false;
+    const auto* end = text.data() + text.size();
+    const auto result = std::from_chars(text.data(), end, value);
+    return result.ec == std::errc() && result.ptr == end;
+}
+
+bool parseDouble(std::string_view text, double& value) {
+    if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+    if (text.empty()) return false;
+    const auto* end = text.data() + text.size();
+    const auto result = std::from_chars(text.data(), end, value);
+    return result.ec == std::errc() && result.ptr == end;
+}
+
+std::string formatDouble(double value) {
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return std::string(buffer, result.ptr);
+}
+
+std::string toLower(std::string_view text) {
+    std::string out(text);
+    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return out;
+}
+
+std::string_view trim(std::string_view text) {
+    const auto isSpace = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+    while (!text.empty() && isSpace(text.front())) text.remove_prefix(1);
+    while (!text.empty() && isSpace(text.back())) text.remove_suffix(1);
+    return text;
+}
+
+} // namespace cutaway::detail

@@ -1,0 +1,241 @@
+// NIfTI-1 single-file reader (.nii, .nii.gz; magic "n+1"), either byte order.
+// https://nifti.nimh.nih.gov/nifti-1/documentation/nifti1fields
+#include <cmath>
+#include <cstring>
+
+#include "core/error.hpp"
+#include "volume/byte_order.hpp"
+#include "volume/gzip.hpp"
+#include "volume/io_util.hpp"
+#include "volume/volume.hpp"
+
+namespace cutaway {
+
+namespace {
+
+constexpr std::size_t kHeaderSize = 348;
+/// vox_offset beyond this is not a real file (it would mean a gigabyte of
+/// header extensions); refusing it keeps a hostile .nii.gz from making us
+/// inflate gigabytes just to find the data.
+constexpr double kMaxVoxOffset = double(std::uint64_t{1} << 30);
+
+/// Field access on the raw 348 bytes, converting from the file's byte order.
+class HeaderBytes {
+public:
+    HeaderBytes(const std::byte* bytes, bool swap) : m_bytes(bytes), m_swap(swap) {}
+
+    template <typename T>
+    T get(std::size_t offset) const {
+        std::byte copy[sizeof(T)];
+        std::memcpy(copy, m_bytes + offset, sizeof(T));
+        if (m_swap) detail::swapBytes(copy, 1, sizeof(T));
+        T value;
+        std::memcpy(&value, copy, sizeof(T));
+        return value;
+    }
+    std::int16_t i16(std::size_t offset) const { return get<std::int16_t>(offset); }
+    float f32(std::size_t offset) const { return get<float>(offset); }
+
+private:
+    const std::byte* m_bytes;
+    bool m_swap;
+};
+
+VoxelType niftiType(std::int16_t code, const std::string& ctx) {
+    switch (code) {
+    case 2: return VoxelType::U8;
+    case 4: return VoxelType::I16;
+    case 8: return VoxelType::I32;
+    case 16: return VoxelType::F32;
+    case 64: return VoxelType::F64;
+    case 256: return VoxelType::I8;
+    case 512: return VoxelType::U16;
+    case 768: return VoxelType::U32;
+    default: break;
+    }
+    const char* name = "unknown";
+    switch (code) {
+    case 1: name = "binary"; break;
+    case 32: name = "complex64"; break;
+    case 128: name = "RGB24"; break;
+    case 1024: name = "int64"; break;
+    case 1280: name = "uint64"; break;
+    case 1536: name = "float128"; break;
+    case 1792: name = "complex128"; break;
+    case 2048: name = "complex256"; break;
+    case 2304: name = "RGBA32"; break;
+    default: break;
+    }
+    throw InputError(ctx + ": unsupported NIfTI datatype " + std::to_string(code) + " (" + name +
+                     "); cutaway reads uint8, int8, uint16, int16, uint32, int32, float32 and "
+                     "float64");
+}
+
+struct Parsed {
+    Volume volume;            ///< everything but the data
+    std::size_t bytes = 0;    ///< voxel data size
+    std::uint64_t offset = 0; ///< where the data starts
+    bool swap = false;
+};
+
+Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
+    std::int32_t sizeofHdr = 0;
+    std::memcpy(&sizeofHdr, raw, 4);
+    bool swap = false;
+    if (sizeofHdr != 348) {
+        detail::swapBytes(reinterpret_cast<std::byte*>(&sizeofHdr), 1, 4);
+        if (sizeofHdr == 348) {
+            swap = true; // written on a machine of the other byte order
+        } else if (sizeofHdr == 540 || std::memcmp(raw, "\x1c\x02\0\0", 4) == 0) {
+            throw InputError(ctx + ": NIfTI-2 files are not supported (save as NIfTI-1)");
+        } else {
+            std::int32_t asWritten = 0;
+            std::memcpy(&asWritten, raw, 4);
+            throw InputError(ctx + ": not a NIfTI-1 file (sizeof_hdr is " +
+                             std::to_string(asWritten) + ", expected 348)");
+        }
+    }
+    const HeaderBytes h(raw, swap);
+    if (std::memcmp(raw + 344, "ni1\0", 4) == 0) {
+        throw InputError(ctx + ": a NIfTI-1 header-only file (magic ni1, data in a separate .img) "
+                               "is not supported; use a single .nii");
+    }
+    if (std::memcmp(raw + 344, "n+1\0", 4) != 0) {
+        throw InputError(ctx + ": not a NIfTI-1 file (bad magic, expected \"n+1\")");
+    }
+
+    Parsed p;
+    p.swap = swap;
+    Volume& v = p.volume;
+    const std::int16_t rank = h.i16(40);
+    if (rank < 1 || rank > 7) {
+        throw InputError(ctx + ": dim[0] is " + std::to_string(rank) + " (must be 1..7)");
+    }
+    if (rank < 3) {
+        throw InputError(ctx + ": the image is " + std::to_string(rank) +
+                         "-dimensional; cutaway reads 3D volumes");
+    }
+    for (int d = 4; d <= rank; ++d) {
+        if (h.i16(40 + 2 * static_cast<std::size_t>(d)) != 1) {
+            throw InputError(ctx + ": dim[" + std::to_string(d) + "] is " +
+                             std::to_string(h.i16(40 + 2 * static_cast<std::size_t>(d))) +
+                             "; cutaway reads a single 3D volume (time series and vectors are not "
+                             "supported)");
+        }
+    }
+    v.type = niftiType(h.i16(70), ctx);
+    std::int64_t sizes[3] = {};
+    for (int a = 0; a < 3; ++a) {
+        sizes[a] = h.i16(42 + 2 * static_cast<std::size_t>(a));
+        if (sizes[a] < 1) {
+            throw InputError(ctx + ": dim[" + std::to_string(a + 1) + "] is " +
+                             std::to_string(sizes[a]) + " (must be >= 1)");
+        }
+    }
+    p.bytes = detail::checkedByteCount(sizes, v.type, ctx);
+    v.dims = glm::ivec3(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]),
+                        static_cast<int>(sizes[2]));
+    for (int a = 0; a < 3; ++a) {
+        // pixdim may be negative (a flip: only the magnitude is spacing) or 0
+        // (written by many tools when unknown: taken as 1 mm).
+        double spacing = std::fabs(static_cast<double>(h.f32(80 + 4 * static_cast<std::size_t>(a))));
+        if (spacing == 0.0) spacing = 1.0;
+        detail::checkSpacing(spacing, a, ctx);
+        v.spacing[a] = spacing;
+    }
+    const double voxOffset = h.f32(108);
+    if (!std::isfinite(voxOffset) || voxOffset < 0.0 || voxOffset > kMaxVoxOffset) {
+        throw InputError(ctx + ": invalid vox_offset " + detail::formatDouble(voxOffset));
+    }
+    // A single file's data cannot start inside the header; old writers left 0 here.
+    p.offset = std::max<std::uint64_t>(352, static_cast<std::uint64_t>(voxOffset));
+
+    // Scaling: slope 0 or not finite means none (as the NIfTI standard says).
+    const double slope = h.f32(112);
+    const double inter = h.f32(116);
+    if (std::isfinite(slope) && slope != 0.0) {
+        v.slope = slope;
+        v.inter = std::isfinite(inter) ? inter : 0.0;
+    }
+    // Origin: the sform translation if set, else the qform's (informational).
+    if (h.i16(254) > 0) {
+        v.origin = glm::dvec3(h.f32(280 + 12), h.f32(296 + 12), h.f32(312 + 12));
+    } else if (h.i16(252) > 0) {
+        v.origin = glm::dvec3(h.f32(268), h.f32(272), h.f32(276));
+    }
+    return p;
+}
+
+bool isGzip(const std::filesystem::path& path) {
+    std::ifstream in = detail::openBinary(path);
+    unsigned char magic[2] = {};
+    in.read(reinterpret_cast<char*>(magic), 2);
+    return in.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+}
+
+} // namespace
+
+Volume readNifti(const std::filesystem::path& path) {
+    const std::string ctx = path.string();
+    const std::uint64_t fileSize = detail::regularFileSize(path);
+    std::byte raw[kHeaderSize];
+    Parsed p;
+    // Sniff the content rather than trust the extension: a .nii may be gzipped.
+    if (isGzip(path)) {
+        std::ifstream in = detail::openBinary(path);
+        detail::GzipReader reader(in, ctx);
+        const std::size_t got = reader.read(raw, kHeaderSize);
+        if (got < kHeaderSize) {
+            throw InputError(ctx + ": too short for a NIfTI-1 header (" + std::to_string(got) +
+                             " bytes after decompression, need 348)");
+        }
+        p = parseHeader(raw, ctx);
+        const std::uint64_t gap = p.offset - kHeaderSize;
+        if (reader.skip(gap) < gap) {
+            throw InputError(ctx + ": vox_offset " + std::to_string(p.offset) +
+                             " is beyond the end of the file (" + std::to_string(reader.position()) +
+                             " bytes after decompression)");
+        }
+        p.volume.data = detail::readUpTo(reader, p.bytes);
+        if (p.volume.data.size() < p.bytes) {
+            throw InputError(ctx + ": data truncated: expected " + std::to_string(p.bytes) +
+                             " bytes after vox_offset " + std::to_string(p.offset) + ", found " +
+                             std::to_string(p.volume.data.size()));
+        }
+        std::byte extra{};
+        if (reader.read(&extra, 1) != 0) {
+            throw InputError(ctx + ": decompressed data exceeds the declared size (" +
+                             std::to_string(p.offset + p.bytes) + " bytes)");
+        }
+    } else {
+        if (fileSize < kHeaderSize) {
+            throw InputError(ctx + ": too short for a NIfTI-1 header (" + std::to_string(fileSize) +
+                             " bytes, need 348)");
+        }
+        std::ifstream in = detail::openBinary(path);
+        detail::readSome(in, raw, kHeaderSize);
+        p = parseHeader(raw, ctx);
+        if (p.offset > fileSize) {
+            throw InputError(ctx + ": vox_offset " + std::to_string(p.offset) +
+                             " is beyond the end of the file (" + std::to_string(fileSize) +
+                             " bytes)");
+        }
+        const std::uint64_t available = fileSize - p.offset;
+        if (available < p.bytes) {
+            throw InputError(ctx + ": data truncated: expected " + std::to_string(p.bytes) +
+                             " bytes after vox_offset " + std::to_string(p.offset) + ", found " +
+                             std::to_string(available));
+        }
+        in.seekg(static_cast<std::streamoff>(p.offset));
+        p.volume.data.resize(p.bytes);
+        if (detail::readSome(in, p.volume.data.data(), p.bytes) != p.bytes) {
+            throw InputError(ctx + ": read error in the voxel data");
+        }
+    }
+    if (p.swap) {
+        detail::swapBytes(p.volume.data.data(), p.volume.voxelCount(), voxelSize(p.volume.type));
+    }
+    return std::move(p.volume);
+}
+
+} // namespace cutaway

@@ -1,0 +1,123 @@
+// NRRD writer: attached header, little endian, raw or gzip. The file appears
+// atomically: it is written under a temporary name in the target folder and
+// renamed over the target, so a crash never leaves a half-written volume.
+#include <cerrno>
+#include <cstring>
+#include <random>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "volume/byte_order.hpp"
+#include "volume/gzip.hpp"
+#include "volume/io_util.hpp"
+#include "volume/volume.hpp"
+
+namespace cutaway {
+
+namespace {
+
+std::string nrrdTypeName(VoxelType type) {
+    // The NRRD spellings of the canonical names, except the two float types.
+    switch (type) {
+    case VoxelType::F32: return "float";
+    case VoxelType::F64: return "double";
+    default: return std::string(voxelTypeName(type));
+    }
+}
+
+std::string header(const Volume& volume, bool gzip) {
+    using detail::formatDouble;
+    std::ostringstream out;
+    out << "NRRD0004\n"
+        << "# Complete NRRD file format specification at:\n"
+        << "# http://teem.sourceforge.net/nrrd/format.html\n"
+        << "type: " << nrrdTypeName(volume.type) << "\n"
+        << "dimension: 3\n"
+        << "sizes: " << volume.dims.x << ' ' << volume.dims.y << ' ' << volume.dims.z << "\n";
+    const bool hasOrigin = volume.origin != glm::dvec3(0.0);
+    if (hasOrigin) {
+        // The spec allows `space origin` only with a space; per-axis spacing then
+        // goes in `space directions` (teem rejects `spacings` next to a space).
+        out << "space dimension: 3\n"
+            << "space directions: (" << formatDouble(volume.spacing.x) << ",0,0) (0,"
+            << formatDouble(volume.spacing.y) << ",0) (0,0," << formatDouble(volume.spacing.z)
+            << ")\n"
+            << "space origin: (" << formatDouble(volume.origin.x) << ','
+            << formatDouble(volume.origin.y) << ',' << formatDouble(volume.origin.z) << ")\n";
+    } else {
+        out << "spacings: " << formatDouble(volume.spacing.x) << ' '
+            << formatDouble(volume.spacing.y) << ' ' << formatDouble(volume.spacing.z) << "\n";
+    }
+    out << "kinds: domain domain domain\n"
+        << "endian: little\n"
+        << "encoding: " << (gzip ? "gzip" : "raw") << "\n";
+    if (volume.slope != 1.0 || volume.inter != 0.0) {
+        out << "cutaway_slope:=" << formatDouble(volume.slope) << "\n"
+            << "cutaway_inter:=" << formatDouble(volume.inter) << "\n";
+    }
+    out << "\n";
+    return out.str();
+}
+
+std::filesystem::path temporaryPath(const std::filesystem::path& path) {
+    std::random_device device;
+    std::uniform_int_distribution<std::uint64_t> pick;
+    std::ostringstream name;
+    name << '.' << path.filename().string() << ".tmp-" << std::hex << pick(device);
+    return path.parent_path() / name.str();
+}
+
+} // namespace
+
+void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzip) {
+    const std::string ctx = path.string();
+    const std::int64_t sizes[3] = {volume.dims.x, volume.dims.y, volume.dims.z};
+    const std::size_t bytes = detail::checkedByteCount(sizes, volume.type, ctx);
+    if (volume.data.size() != bytes) {
+        throw InputError(ctx + ": volume has " + std::to_string(volume.data.size()) +
+                         " bytes of data but its dims and type need " + std::to_string(bytes));
+    }
+    for (int a = 0; a < 3; ++a) detail::checkSpacing(volume.spacing[a], a, ctx);
+
+    const std::filesystem::path temporary = temporaryPath(path);
+    const auto fail = [&](const std::string& why) {
+        std::error_code ignored;
+        std::filesystem::remove(temporary, ignored);
+        return RuntimeError(ctx + ": cannot write: " + why);
+    };
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        if (!out) {
+            const int error = errno;
+            const auto folder = path.parent_path().empty() ? std::filesystem::path(".")
+                                                            : path.parent_path();
+            throw fail("cannot create a file in folder '" + folder.string() + "' (" +
+                       std::strerror(error) + ")");
+        }
+        const std::string text = header(volume, gzip);
+        out.write(text.data(), static_cast<std::streamsize>(text.size()));
+        const std::byte* voxels = volume.data.data();
+        std::vector<std::byte> swapped;
+        if (detail::needsSwap(false) && voxelSize(volume.type) > 1) {
+            swapped = volume.data;
+            detail::swapBytes(swapped.data(), volume.voxelCount(), voxelSize(volume.type));
+            voxels = swapped.data();
+        }
+        try {
+            if (gzip) {
+                detail::writeGzip(out, voxels, bytes, ctx);
+            } else {
+                out.write(reinterpret_cast<const char*>(voxels), static_cast<std::streamsize>(bytes));
+            }
+        } catch (const RuntimeError&) {
+            throw fail("writing the data failed (disk full?)");
+        }
+        out.close();
+        if (!out) throw fail("writing the data failed (disk full?)");
+    }
+    std::error_code ec;
+    std::filesystem::rename(temporary, path, ec);
+    if (ec) throw fail("cannot rename the temporary file into place (" + ec.message() + ")");
+}
+
+} // namespace cutaway

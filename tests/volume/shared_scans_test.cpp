@@ -1,0 +1,53 @@
+// The real scans in ../shared/data load with the dims, voxel type and spacing
+// their README states. Skipped, with a message, when that folder is absent.
+#include "volume_test_util.hpp"
+
+namespace cutaway::test {
+namespace {
+
+struct Scan {
+    const char* file;
+    glm::ivec3 dims;
+    VoxelType type;
+    glm::dvec3 spacing;
+};
+
+const Scan kScans[] = {
+    {"headsq.nrrd", {64, 64, 93}, VoxelType::U16, {3.2, 3.2, 1.5}},
+    {"chest_ct.nrrd", {256, 256, 133}, VoxelType::U8, {1.40625, 1.40625, 2.5}},
+    {"ct_head.nii.gz", {208, 256, 225}, VoxelType::U8, {1, 1, 1}},
+    {"carp.nii.gz", {256, 512, 256}, VoxelType::U8, {1, 1, 1}},
+    {"brain_t1.nii.gz", {256, 256, 256}, VoxelType::U8, {1, 1, 1}},
+    {"brain_labels.nii.gz", {256, 256, 256}, VoxelType::I16, {1, 1, 1}},
+    {"frog_labels.nii.gz", {500, 470, 136}, VoxelType::U8, {1, 1, 1.5}},
+};
+
+class SharedScans : public ::testing::TestWithParam<Scan> {};
+
+} // namespace
+
+TEST_P(SharedScans, LoadWithTheirStatedShape) {
+    const std::filesystem::path folder(CUTAWAY_SHARED_DATA);
+    const Scan& scan = GetParam();
+    if (!std::filesystem::exists(folder))
+        GTEST_SKIP() << "shared data folder not found at " << folder << ": real-scan tests skipped";
+    const Volume v = readVolume(folder / scan.file);
+    EXPECT_EQ(v.dims, scan.dims);
+    EXPECT_EQ(v.type, scan.type) << voxelTypeName(v.type);
+    for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(v.spacing[a], scan.spacing[a], 1e-4) << a;
+    const ValueRange r = valueRange(v);
+    EXPECT_LT(r.min, r.max) << "a constant volume";
+    if (std::string(scan.file) == "brain_labels.nii.gz") {
+        EXPECT_EQ(r.max, 12175.0) << "FreeSurfer label ids above 255 must survive";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Data, SharedScans, ::testing::ValuesIn(kScans), [](const auto& info) {
+    std::string name = info.param.file;
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+});
+
+} // namespace cutaway::test

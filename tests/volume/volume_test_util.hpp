@@ -1,0 +1,104 @@
+#pragma once
+// Helpers for the volume tests: temporary folders, raw bytes, gzip, and
+// hand-written NIfTI-1 headers (so the reader is checked against the format,
+// not against our own writer).
+#include "core/error.hpp"
+#include "volume/volume.hpp"
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <string>
+#include <unistd.h>
+#include <vector>
+#include <zlib.h>
+
+namespace cutaway::test {
+
+class VolumeFiles : public ::testing::Test {
+protected:
+    void SetUp() override {
+        m_dir = std::filesystem::temp_directory_path() /
+                ("cutaway_volume_" + std::to_string(::getpid()) + "_" +
+                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        std::filesystem::remove_all(m_dir);
+        std::filesystem::create_directories(m_dir);
+    }
+    void TearDown() override { std::filesystem::remove_all(m_dir); }
+
+    std::filesystem::path path(const std::string& name) const { return m_dir / name; }
+    std::filesystem::path writeFile(const std::string& name, const std::string& bytes) const {
+        std::ofstream(m_dir / name, std::ios::binary) << bytes;
+        return m_dir / name;
+    }
+    std::filesystem::path m_dir;
+};
+
+inline std::string bytesOf(const void* p, std::size_t n) {
+    return std::string(static_cast<const char*>(p), n);
+}
+
+/// gzip (not zlib) compression of `data`.
+inline std::string gzip(const std::string& data) {
+    z_stream s{};
+    deflateInit2(&s, 6, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY);
+    std::string out(deflateBound(&s, data.size()) + 64, '\0');
+    s.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+    s.avail_in = static_cast<uInt>(data.size());
+    s.next_out = reinterpret_cast<Bytef*>(out.data());
+    s.avail_out = static_cast<uInt>(out.size());
+    deflate(&s, Z_FINISH);
+    out.resize(s.total_out);
+    deflateEnd(&s);
+    return out;
+}
+
+inline std::string byteSwapped(std::string data, std::size_t width) {
+    for (std::size_t i = 0; i + width <= data.size(); i += width)
+        std::reverse(data.begin() + static_cast<std::ptrdiff_t>(i),
+                     data.begin() + static_cast<std::ptrdiff_t>(i + width));
+    return data;
+}
+
+/// A NIfTI-1 header (348 bytes) plus the 4-byte extension flag, little endian.
+struct NiftiHeader {
+    std::int16_t dims[8] = {3, 1, 1, 1, 1, 1, 1, 1};
+    std::int16_t datatype = 2;
+    std::int16_t bitpix = 8;
+    float pixdim[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+    float voxOffset = 352;
+    float sclSlope = 0;
+    float sclInter = 0;
+    std::int32_t sizeofHdr = 348;
+    const char* magic = "n+1";
+
+    std::string bytes() const {
+        std::string h(352, '\0');
+        auto put = [&](std::size_t at, const void* p, std::size_t n) { std::memcpy(&h[at], p, n); };
+        put(0, &sizeofHdr, 4);
+        put(40, dims, 16);
+        put(70, &datatype, 2);
+        put(72, &bitpix, 2);
+        put(76, pixdim, 32);
+        put(108, &voxOffset, 4);
+        put(112, &sclSlope, 4);
+        put(116, &sclInter, 4);
+        put(344, magic, std::strlen(magic) + 1);
+        return h;
+    }
+};
+
+/// The message of the InputError that `f` throws ("" when none is thrown).
+template <typename F>
+std::string inputError(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace cutaway::test
