@@ -43,8 +43,8 @@ TEST_P(SharedScans, LoadWithTheirStatedShape) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Data, SharedScans, ::testing::ValuesIn(kScans), [](const auto& info) {
-    std::string name = info.param.file;
+INSTANTIATE_TEST_SUITE_P(Data, SharedScans, ::testing::ValuesIn(kScans), [](const auto& param) {
+    std::string name = param.param.file;
     for (char& c : name)
         if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
     return name;
