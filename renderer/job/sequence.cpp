@@ -45,9 +45,12 @@ public:
             m_volume = std::make_unique<render::GpuVolume>(
                 render::prepareVolume(m_ctx, m_baker, volume, sceneWindow(scene, volume)));
             m_volumeKey = key;
+            ++m_uploads;
         }
         return m_renderer.render(scene, *m_volume);
     }
+
+    int uploads() const { return m_uploads; }
 
 private:
     const gpu::Context& m_ctx;
@@ -55,6 +58,7 @@ private:
     render::SliceRenderer m_renderer;
     std::unique_ptr<render::GpuVolume> m_volume;
     std::string m_volumeKey;
+    int m_uploads = 0;
 };
 
 } // namespace
@@ -152,6 +156,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
         if (options.onFrame) options.onFrame(event);
         if (event.kind == FrameEvent::Kind::Failed && options.failFast) break;
     }
+    summary.volumeUploads = renderer ? renderer->uploads() : 0;
     summary.totalSeconds = secondsSince(runStart);
     return summary;
 }

@@ -63,7 +63,8 @@ struct SequenceSummary {
     int skipped = 0;
     int failed = 0;
     bool anyBadInput = false;
-    bool stopped = false;             ///< stopRequested() ended the run early
+    bool stopped = false;  ///< stopRequested() ended the run early
+    int volumeUploads = 0; ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
     std::vector<double> frameSeconds; ///< of rendered frames
     double totalSeconds = 0.0;
 };
