@@ -22,6 +22,9 @@ const Scan kScans[] = {
     {"frog_labels.nii.gz", {500, 470, 136}, VoxelType::U8, {1, 1, 1.5}},
 };
 
+// Names the scan in test output instead of dumping its bytes.
+void PrintTo(const Scan& scan, std::ostream* os) { *os << scan.file; }
+
 class SharedScans : public ::testing::TestWithParam<Scan> {};
 
 } // namespace
