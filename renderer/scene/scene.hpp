@@ -6,6 +6,7 @@
 // axes scaled by its spacing, with the origin at the centre of the volume box
 // (so a 256^3 scan at 1 mm spans [-128, 128]^3). Scene JSON keys are
 // snake_case; see docs/scene-format.md for every key, range and default.
+#include "shared/operators.h"
 #include "volume/volume.hpp"
 
 #include <array>
@@ -139,6 +140,22 @@ struct Animation {
     std::vector<Track> tracks;
 };
 
+enum class OperatorType { Peeler, Retractor, Pliers, Dilator };
+
+/// /operators/N: one manipulation operator (paper section 3; docs/operators.md).
+/// Its box is the unit cube [-1, 1]^3 of its local frame, placed in the world
+/// by `localToWorld` (Eq. 8: translate, rotate, scale, or a matrix); the
+/// tissue surface is toward local +z. Parameters are given in millimetres and
+/// degrees in the scene and stored here converted to local units.
+struct OperatorSpec {
+    OperatorType type = OperatorType::Retractor;
+    glm::dmat4 localToWorld{1.0};
+    shader::OperatorParams params{};
+    glm::ivec3 resolution{64};  ///< /operators/N/resolution: texels of the baked map per axis
+    double normalBand = 2.0;    ///< /operators/N/normal_band: D of Eq. 7, mm
+    std::string name;           ///< /operators/N/name, for messages; default "operator N (type)"
+};
+
 struct Scene {
     int version = 1;
     std::filesystem::path file;    ///< the scene file, empty when parsed from a string
@@ -149,6 +166,7 @@ struct Scene {
     Lights lights;
     RenderSettings render;
     OutputSettings output;
+    std::vector<OperatorSpec> operators;
     Animation animation;
     nlohmann::json document; ///< the validated JSON as given (for EXR headers)
 };

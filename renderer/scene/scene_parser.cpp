@@ -101,7 +101,8 @@ void parseOutput(JsonReader& reader, OutputSettings& output) {
 ///  * render     object, default: 512 x 512, black background, shaded
 ///  * output     object, default: "cutaway_####.exr" next to the scene, half floats
 ///  * animation  object, default: one frame, no tracks (scene_animation.cpp)
-///  * labels, operators, meshes: reserved for later versions; rejected.
+///  * operators  array, default []: manipulation operators (scene_operators.cpp)
+///  * labels, meshes: reserved for later versions; rejected.
 Scene parseScene(const nlohmann::json& document, const std::filesystem::path& baseDir,
                  const std::string& source) {
     using namespace scene_detail;
@@ -132,12 +133,13 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     root.object("render", [&](JsonReader& reader) { parseRender(reader, scene.render); });
     root.object("output", [&](JsonReader& reader) { parseOutput(reader, scene.output); });
     root.object("animation", [&](JsonReader& reader) { parseAnimation(reader, scene.animation); });
+    parseOperators(root, scene.operators);
     // Relative output patterns (the default too) resolve against the scene's folder.
     const std::filesystem::path pattern(scene.output.pattern);
     if (pattern.is_relative() && !baseDir.empty())
         scene.output.pattern = (baseDir / pattern).lexically_normal().string();
 
-    for (const char* key : {"labels", "operators", "meshes"})
+    for (const char* key : {"labels", "meshes"})
         root.reserved(key);
     root.finish();
     diagnostics.throwIfAny();

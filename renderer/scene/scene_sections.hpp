@@ -26,6 +26,8 @@ void parseRender(JsonReader& reader, RenderSettings& render);
 void parseOutput(JsonReader& reader, OutputSettings& output);
 
 void parseAnimation(JsonReader& reader, Animation& animation);
+/// Reads /operators from the root (an array, so it takes the root reader).
+void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators);
 
 /// Reads a direction: 3 numbers in [-kMaxCoordinate, kMaxCoordinate], not all zero.
 std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required);

@@ -143,7 +143,9 @@ const std::map<std::string, std::string> kBadScenes = {
     {"13-up-parallel-to-view.json", ": /camera/look_at/up: expected a direction not parallel"},
     {"14-too-many-lights.json", ": /lights/directional: expected an array of at most 4"},
     {"15-background-string.json", ": /render/background: expected an array of 3 or 4 numbers"},
-    {"16-reserved-operators.json", ": /operators: not supported yet by this version of cutaway"},
+    {"16-operator-unknown-type.json",
+     ": /operators/0/type: expected one of \"peeler\", \"retractor\", \"pliers\", \"dilator\", "
+     "got \"peel\""},
     {"17-syntax-error.json", "17-syntax-error.json:4:10: JSON syntax error: "},
     {"18-elevation-90.json", ": /camera/orbit/elevation: expected a number in (-90, 90)"},
     {"19-pixel-type.json", ": /output/pixel_type: expected one of \"half\", \"float\""},
@@ -168,6 +170,10 @@ const std::map<std::string, std::string> kBadScenes = {
      ": /render/classification: expected one of \"preintegrated\", \"post\""},
     {"34-fps-zero.json", ": /animation/fps: expected a number in (0, 1000], got 0"},
     {"35-key-without-value.json", ": /animation/tracks/0/keys/0/value: missing"},
+    {"36-pliers-do-not-converge.json",
+     ": /operators/0/params/displacement: expected |displacement| * 1.72 / radius < 0.95"},
+    {"37-operator-angle-string.json",
+     ": /operators/1/params/angle: expected a number in [0, 180], got \"90deg\""},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {

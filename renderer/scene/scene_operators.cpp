@@ -1,0 +1,183 @@
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "scene/scene_sections.hpp"
+
+namespace cutaway::scene_detail {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// /operators/N/placement (Eq. 8): the operator's unit box [-1, 1]^3 in the world.
+///
+///  * translate  [number x3], mm, world position of the box centre, default [0, 0, 0]
+///  * rotate     [number x3], degrees about x, then y, then z (world axes), default [0, 0, 0]
+///  * scale      [number x3], mm, each in (0, 1e5], required: the box's edge lengths
+///  or instead of the three:
+///  * matrix     [number x16], row-major 4x4 affine map from the unit box to the world
+///               (last row 0 0 0 1, invertible)
+glm::dmat4 parsePlacement(JsonReader& r, glm::dvec3& halfSize) {
+    if (const nlohmann::json* m = r.find("matrix")) {
+        for (const char* key : {"translate", "rotate", "scale"})
+            if (r.find(key)) r.error(key, "not allowed together with \"matrix\"");
+        const auto v =
+            r.asNumbers(*m, r.pointerOf("matrix"), 16, 16, Range::closed(-1e6, 1e6));
+        if (!v) return glm::dmat4(1.0);
+        glm::dmat4 a(1.0);
+        for (int row = 0; row < 4; ++row)
+            for (int col = 0; col < 4; ++col) a[col][row] = (*v)[std::size_t(row * 4 + col)];
+        const bool affine = a[0][3] == 0 && a[1][3] == 0 && a[2][3] == 0 && a[3][3] == 1;
+        const double det = glm::determinant(glm::dmat3(a));
+        if (!affine || std::abs(det) < 1e-9)
+            r.error("matrix", "expected an invertible affine matrix (last row 0 0 0 1)");
+        for (int c = 0; c < 3; ++c) halfSize[c] = glm::length(glm::dvec3(a[c]));
+        return a;
+    }
+    const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0), Range::closed(-1e6, 1e6));
+    const glm::dvec3 deg = r.vec3("rotate", glm::dvec3(0.0), Range::closed(-36000, 36000));
+    const glm::dvec3 size =
+        r.vec3("scale", Range::openClosed(0.0, 1e5), true).value_or(glm::dvec3(2.0));
+    halfSize = 0.5 * size;
+    glm::dmat4 a = glm::translate(glm::dmat4(1.0), t);
+    a = glm::rotate(a, glm::radians(deg.z), glm::dvec3(0, 0, 1));
+    a = glm::rotate(a, glm::radians(deg.y), glm::dvec3(0, 1, 0));
+    a = glm::rotate(a, glm::radians(deg.x), glm::dvec3(1, 0, 0));
+    return glm::scale(a, halfSize);
+}
+
+float f(double v) { return static_cast<float>(v); }
+
+/// /operators/N/params of a peeler (lengths in mm along the box's local axes):
+///  * hinge      number, mm from the box centre along local x, in (-scale/2, scale/2), default 0
+///  * thickness  number, mm, layer lifted, in (0, scale_z], default scale_z / 10
+///  * radius     number, mm, bend radius, in (0, 1e5], default scale_z / 10
+///  * angle      number, degrees, fold angle, in [0, 180], default 120
+///  * width      number, mm along local y, in (0, 1e5], default scale_y (the whole box)
+void peeler(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
+    const double hinge = r.number("hinge", 0.0, Range::open(-h.x, h.x));
+    const double thickness = r.number("thickness", 0.2 * h.z, Range::openClosed(0.0, 2.0 * h.z));
+    const double radius = r.number("radius", 0.2 * h.z, Range::openClosed(0.0, 1e5));
+    const double angle = r.number("angle", 120.0, Range::closed(0.0, 180.0));
+    const double width = r.number("width", 2.0 * h.y, Range::openClosed(0.0, 1e5));
+    p.a = glm::vec4(f(hinge / h.x), f(thickness / h.z), f(radius / h.z), f(angle * kPi / 180.0));
+    p.b = glm::vec4(f(0.5 * width / h.y), 0.0f, 0.0f, 0.0f);
+    p.kind.x = CW_OP_PEELER;
+}
+
+/// retractor:
+///  * length   number, mm along local y, in (0, scale_y], default 0.6 scale_y
+///  * depth    number, mm from the surface (local +z face) down, in (0, scale_z], default scale_z / 2
+///  * opening  number, mm, full width of the opening at the surface, in [0, 0.9 scale_x],
+///             default 0.3 scale_x
+void retractor(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
+    const double length = r.number("length", 1.2 * h.y, Range::openClosed(0.0, 2.0 * h.y));
+    const double depth = r.number("depth", h.z, Range::openClosed(0.0, 2.0 * h.z));
+    const double opening = r.number("opening", 0.6 * h.x, Range::closed(0.0, 1.8 * h.x));
+    p.a = glm::vec4(f(0.5 * length / h.y), f(depth / h.z), f(0.5 * opening / h.x), 0.0f);
+    p.kind.x = CW_OP_RETRACTOR;
+}
+
+/// pliers (a sphere of influence in the box's local frame):
+///  * grasp         [number x3], mm from the box centre, default [0, 0, 0]
+///  * radius        number, mm (in units of the smallest half edge), in (0, 1e5],
+///                  default half the smallest edge; the sphere must fit in the box
+///  * displacement  [number x3], mm, default [0, 0, 0]; |d| * 1.72 / radius < 1 so the
+///                  map stays invertible
+void pliers(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
+    const double hMin = std::min({h.x, h.y, h.z});
+    const glm::dvec3 grasp = r.vec3("grasp", glm::dvec3(0.0), Range::closed(-1e5, 1e5)) / h;
+    const double radius = r.number("radius", 0.5 * hMin, Range::openClosed(0.0, 1e5)) / hMin;
+    const glm::dvec3 d = r.vec3("displacement", glm::dvec3(0.0), Range::closed(-1e5, 1e5)) / h;
+    for (int a = 0; a < 3; ++a)
+        if (std::abs(grasp[a]) + radius > 1.0 + 1e-9) {
+            r.error("radius", "expected the sphere of influence (grasp +- radius) to fit in the "
+                              "operator's box, so its faces stay fixed");
+            break;
+        }
+    const double contraction = glm::length(d) * 1.7173 / radius;
+    if (contraction >= 0.95)
+        r.error("displacement",
+                "expected |displacement| * 1.72 / radius < 0.95 so the backward map converges "
+                "(got " + describeValue(contraction) + "): use a larger radius or a smaller displacement");
+    p.a = glm::vec4(glm::vec3(grasp), f(radius));
+    p.b = glm::vec4(glm::vec3(d), 0.0f);
+    p.kind.x = CW_OP_PLIERS;
+}
+
+/// dilator (a volumetric magic lens):
+///  * radius         number, mm (in units of the smallest half edge), inner region
+///                   magnified uniformly, in (0, 1e5), default a quarter of the smallest edge
+///  * magnification  number, in [0.1, 10], default 2; radius * magnification must stay
+///                   inside the box
+///  * shape          "sphere" or "cylinder" (about local z), default "sphere"
+void dilator(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
+    const double hMin = std::min({h.x, h.y, h.z});
+    const double radius = r.number("radius", 0.5 * hMin, Range::open(0.0, 1e5)) / hMin;
+    const double m = r.number("magnification", 2.0, Range::closed(0.1, 10.0));
+    const std::string shape = r.string("shape", "sphere", {"sphere", "cylinder"});
+    if (radius * std::max(m, 1.0) >= 0.95)
+        r.error("radius", "expected radius * max(magnification, 1) < 0.95 of the smallest half "
+                          "edge, so the lens fits in the operator's box");
+    p.a = glm::vec4(f(radius), f(m), shape == "cylinder" ? 1.0f : 0.0f, 0.0f);
+    p.kind.x = CW_OP_DILATOR;
+}
+
+} // namespace
+
+/// /operators: an array of manipulation operators, rendered together; their
+/// deformed boxes must not overlap (see docs/operators.md).
+///
+///  * type         "peeler" | "retractor" | "pliers" | "dilator", required
+///  * name         string, default "operator N (TYPE)": used in messages
+///  * placement    object, required: see parsePlacement
+///  * alignment    object, default {"mode": "axis"}; "surface" and "segment" are
+///                 reserved for a later version
+///  * params       object, default {}: per type, see above
+///  * resolution   integer in [8, 256], texels of the baked map per axis, default 64
+///  * normal_band  number, mm, in [0, 1000], default 2: D of Eq. 7, the band over
+///                 which normals blend to the cut's normal
+void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators) {
+    root.objects("operators", 0, 8, [&](JsonReader& r, std::size_t index) {
+        OperatorSpec op;
+        const std::string type =
+            r.string("type", {"peeler", "retractor", "pliers", "dilator"}, true).value_or("");
+        op.name = r.string("name", "operator " + std::to_string(index) + " (" + type + ")");
+        glm::dvec3 halfSize(1.0);
+        r.object(
+            "placement", [&](JsonReader& p) { op.localToWorld = parsePlacement(p, halfSize); },
+            true);
+        r.object("alignment", [&](JsonReader& a) {
+            const std::string mode = a.string("mode", "axis", {"axis", "surface", "segment"});
+            if (mode != "axis")
+                a.error("mode", "\"" + mode + "\" alignment is not supported yet by this "
+                                "version of cutaway (only \"axis\")");
+        });
+        const auto resolution = r.integer("resolution", 64, 8, 256);
+        op.resolution = glm::ivec3(static_cast<int>(resolution));
+        op.normalBand = r.number("normal_band", op.normalBand, Range::closed(0.0, 1000.0));
+        const glm::dvec3 h = halfSize;
+        r.object("params", [&](JsonReader& p) {
+            if (type == "peeler") peeler(p, h, op.params);
+            if (type == "retractor") retractor(p, h, op.params);
+            if (type == "pliers") pliers(p, h, op.params);
+            if (type == "dilator") dilator(p, h, op.params);
+        });
+        if (!r.find("params")) { // defaults: parse an empty object
+            const nlohmann::json empty = nlohmann::json::object();
+            JsonReader p(empty, r.pointerOf("params"), r.diagnostics());
+            if (type == "peeler") peeler(p, h, op.params);
+            if (type == "retractor") retractor(p, h, op.params);
+            if (type == "pliers") pliers(p, h, op.params);
+            if (type == "dilator") dilator(p, h, op.params);
+        }
+        op.type = type == "peeler"    ? OperatorType::Peeler
+                  : type == "pliers"  ? OperatorType::Pliers
+                  : type == "dilator" ? OperatorType::Dilator
+                                      : OperatorType::Retractor;
+        operators.push_back(op);
+    });
+}
+
+} // namespace cutaway::scene_detail
