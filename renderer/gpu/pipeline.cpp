@@ -27,10 +27,18 @@ createSetLayout(const Context& ctx, const std::vector<VkDescriptorSetLayoutBindi
 PipelineLayoutHandle createPipelineLayout(const Context& ctx, VkDescriptorSetLayout setLayout,
                                           uint32_t pushConstantBytes,
                                           VkShaderStageFlags pushStages) {
+    return createPipelineLayout(ctx, std::vector<VkDescriptorSetLayout>{setLayout},
+                                pushConstantBytes, pushStages);
+}
+
+PipelineLayoutHandle createPipelineLayout(const Context& ctx,
+                                          const std::vector<VkDescriptorSetLayout>& setLayouts,
+                                          uint32_t pushConstantBytes,
+                                          VkShaderStageFlags pushStages) {
     VkPushConstantRange range{pushStages, 0, pushConstantBytes};
     VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    info.setLayoutCount = 1;
-    info.pSetLayouts = &setLayout;
+    info.setLayoutCount = static_cast<uint32_t>(setLayouts.size());
+    info.pSetLayouts = setLayouts.data();
     info.pushConstantRangeCount = pushConstantBytes ? 1u : 0u;
     info.pPushConstantRanges = pushConstantBytes ? &range : nullptr;
     VkPipelineLayout layout = VK_NULL_HANDLE;

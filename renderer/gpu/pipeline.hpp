@@ -22,6 +22,12 @@ PipelineLayoutHandle createPipelineLayout(const Context& ctx, VkDescriptorSetLay
                                           uint32_t pushConstantBytes,
                                           VkShaderStageFlags pushStages);
 
+/// A layout with several descriptor sets (set i = setLayouts[i]) and no push constants.
+PipelineLayoutHandle createPipelineLayout(const Context& ctx,
+                                          const std::vector<VkDescriptorSetLayout>& setLayouts,
+                                          uint32_t pushConstantBytes = 0,
+                                          VkShaderStageFlags pushStages = 0);
+
 PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
                                      VkShaderModule module);
 

@@ -3,13 +3,18 @@
 #include "gpu/check.hpp"
 #include "gpu/pipeline.hpp"
 #include "slice_frag.spv.h"
+#include "slice_operator_frag.spv.h"
 #include "slice_vert.spv.h"
 
 namespace cutaway::render {
 
-gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout) {
+gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
+                                        SliceProxy proxy) {
     auto vert = gpu::createShaderModule(ctx, slice_vert_spv, sizeof(slice_vert_spv));
-    auto frag = gpu::createShaderModule(ctx, slice_frag_spv, sizeof(slice_frag_spv));
+    auto frag =
+        proxy == SliceProxy::Operator
+            ? gpu::createShaderModule(ctx, slice_operator_frag_spv, sizeof(slice_operator_frag_spv))
+            : gpu::createShaderModule(ctx, slice_frag_spv, sizeof(slice_frag_spv));
     VkPipelineShaderStageCreateInfo stages[2] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
          VK_SHADER_STAGE_VERTEX_BIT, vert.get(), "main", nullptr},
@@ -46,6 +51,22 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
 
     VkPipelineDepthStencilStateCreateInfo depth{
         VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    depth.stencilTestEnable = VK_TRUE;
+    VkStencilOpState stencil{};
+    stencil.failOp = VK_STENCIL_OP_KEEP;
+    stencil.depthFailOp = VK_STENCIL_OP_KEEP;
+    stencil.compareMask = 0xff;
+    if (proxy == SliceProxy::Operator) {
+        stencil.compareOp = VK_COMPARE_OP_ALWAYS;
+        stencil.passOp = VK_STENCIL_OP_REPLACE;
+        stencil.writeMask = 0xff;
+    } else {
+        stencil.compareOp = VK_COMPARE_OP_NOT_EQUAL;
+        stencil.passOp = VK_STENCIL_OP_KEEP;
+        stencil.writeMask = 0;
+    }
+    depth.front = stencil;
+    depth.back = stencil;
 
     // Front to back "under": dst.rgb += (1 - dst.a) * src.rgb, same for alpha,
     // with src premultiplied. Primitives blend in submission order.
@@ -64,9 +85,10 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
     blendState.attachmentCount = 1;
     blendState.pAttachments = &blend;
 
-    VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
+                                      VK_DYNAMIC_STATE_STENCIL_REFERENCE};
     VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dynamic.dynamicStateCount = 2;
+    dynamic.dynamicStateCount = 3;
     dynamic.pDynamicStates = dynamicStates;
 
     const VkFormat colorFormat = ctx.formats().color;

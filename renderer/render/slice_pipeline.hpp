@@ -1,8 +1,12 @@
 #pragma once
-// The graphics pipeline of the slicing pass: world-space triangles in, one
-// RGBA float colour out with front-to-back premultiplied blending. A
-// depth-stencil attachment is declared (for the mesh pass and the per-slice
-// operator stencil) but slices neither test nor write depth yet.
+// The graphics pipelines of the slicing pass: world-space triangles in, one
+// RGBA float colour out with front-to-back premultiplied blending. Slices
+// neither test nor write depth (the attachment is there for the mesh pass).
+//
+// The stencil composites several operators (paper section 5.1): on slice k
+// (reference ref(k), set dynamically) an operator's polygon writes ref(k); the
+// background polygon is drawn only where the stencil is not ref(k), so no
+// region is drawn twice and no slice needs its own clear.
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 
@@ -10,6 +14,12 @@
 
 namespace cutaway::render {
 
-gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout);
+enum class SliceProxy {
+    Background, ///< slice.frag; stencil test != ref, no write
+    Operator    ///< slice_operator.frag; stencil always passes, writes ref
+};
+
+gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
+                                        SliceProxy proxy);
 
 } // namespace cutaway::render

@@ -72,8 +72,13 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
-    m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), 0, 0);
-    m_pipeline = createSlicePipeline(ctx, m_layout.get());
+    m_operatorSetLayout = gpu::createSetLayout(
+        ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, frag, nullptr},
+              {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
+    m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get(), m_operatorSetLayout.get()});
+    m_pipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Background);
+    m_operatorPipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Operator);
+    m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
@@ -98,13 +103,65 @@ void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
 }
 
+void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
+                                 VkDescriptorSet frameSet) const {
+    VkDeviceSize offset = 0;
+    VkBuffer vb = m_vertices.buffer.get();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 0, 1, &frameSet,
+                            0, nullptr);
+    const auto& ops = m_operators->operators();
+    const int background = static_cast<int>(ops.size()); // proxies: operators, then the volume
+    if (ops.empty()) {                                   // one draw: nothing to composite
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
+        vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1);
+        vkCmdDraw(cmd, static_cast<uint32_t>(slices.triangles.size()), 1, 0, 0);
+        return;
+    }
+    for (std::size_t k = 0; k < slices.slices.size(); ++k) {
+        // Stencil references cycle through 1..255; before a value comes back,
+        // clear the stencil so an old slice's mark cannot hide the background.
+        if (k > 0 && k % 255 == 0) {
+            VkClearAttachment clear{VK_IMAGE_ASPECT_STENCIL_BIT, 0, {}};
+            clear.clearValue.depthStencil = {1.0f, 0};
+            VkClearRect rect{{{0, 0}, {m_color.extent.width, m_color.extent.height}}, 0, 1};
+            vkCmdClearAttachments(cmd, 1, &clear, 1, &rect);
+        }
+        vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK,
+                                 static_cast<uint32_t>(k % 255 + 1));
+        for (const SliceDraw& d : slices.slices[k]) {
+            if (d.proxy == background) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
+            } else {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_operatorPipeline.get());
+                VkDescriptorSet set = ops[static_cast<std::size_t>(d.proxy)]->set.set;
+                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 1, 1,
+                                        &set, 0, nullptr);
+            }
+            vkCmdDraw(cmd, d.count, 1, d.first, 0);
+        }
+    }
+}
+
 Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const int width = scene.render.width, height = scene.render.height;
-    const CameraMatrices cam = computeCamera(scene.camera, volume.box, width, height);
+    m_operators->update(scene.operators);
+    // Proxies: each operator's deformed box, then the volume (the background).
+    // The camera frames them all: a lifted flap may leave the volume's box.
+    std::vector<Proxy> proxies;
+    Box bounds = volume.box;
+    for (const auto& op : m_operators->operators()) {
+        proxies.push_back(
+            orientedBoxProxy(op->box.localToWorld, op->box.local.lo, op->box.local.hi));
+        bounds.lo = glm::min(bounds.lo, op->box.lo());
+        bounds.hi = glm::max(bounds.hi, op->box.hi());
+    }
+    proxies.push_back(boxProxy(volume.box));
+    const CameraMatrices cam = computeCamera(scene.camera, bounds, width, height);
     const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
     const double minDepth = cam.perspective ? cam.nearPlane : -1e30;
-    const SliceSet slices = buildSlices(volume.box, cam.eye, cam.forward, sliceMm, minDepth);
-    m_stats = {slices.sliceCount, slices.triangles.size()};
+    const SliceSet slices = buildSlices(proxies, cam.eye, cam.forward, sliceMm, minDepth);
+    m_stats = {slices.sliceCount, slices.triangles.size(), m_operators->bakes()};
 
     const std::size_t vertexBytes = slices.triangles.size() * sizeof(glm::vec3);
     ensureVertexCapacity(vertexBytes);
@@ -164,15 +221,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                             0.0f, 1.0f};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
-        if (!slices.triangles.empty()) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 0, 1,
-                                    &set.set, 0, nullptr);
-            VkDeviceSize offset = 0;
-            VkBuffer vb = m_vertices.buffer.get();
-            vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
-            vkCmdDraw(cmd, static_cast<uint32_t>(slices.triangles.size()), 1, 0, 0);
-        }
+        if (!slices.triangles.empty()) recordSlices(cmd, slices, set.set);
         vkCmdEndRendering(cmd);
 
         gpu::transition(cmd, m_color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

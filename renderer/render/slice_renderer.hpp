@@ -11,7 +11,9 @@
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "io/image.hpp"
+#include "render/gpu_operators.hpp"
 #include "render/gpu_volume.hpp"
+#include "render/slicer.hpp"
 #include "scene/scene.hpp"
 
 #include <cstdint>
@@ -22,6 +24,7 @@ namespace cutaway::render {
 struct FrameStats {
     int slices = 0;
     std::size_t vertices = 0;
+    int operatorBakes = 0; ///< operator maps baked since the renderer was made
 };
 
 class SliceRenderer {
@@ -30,6 +33,8 @@ public:
 
     /// Renders `scene` (camera, transfer function, lights, render settings) of
     /// the prepared volume. Returns linear premultiplied RGBA, row 0 at the top.
+    /// Operators in the scene are baked when their parameters change and
+    /// composited with the stencil; overlapping ones are refused (InputError).
     Image render(const Scene& scene, const GpuVolume& volume);
 
     const FrameStats& lastStats() const { return m_stats; }
@@ -37,12 +42,16 @@ public:
 private:
     void ensureTargets(uint32_t width, uint32_t height);
     void ensureVertexCapacity(std::size_t bytes);
+    void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet) const;
 
     const gpu::Context& m_ctx;
     gpu::SamplerHandle m_sampler;
-    gpu::DescriptorSetLayoutHandle m_setLayout;
+    gpu::DescriptorSetLayoutHandle m_setLayout;         ///< set 0: frame
+    gpu::DescriptorSetLayoutHandle m_operatorSetLayout; ///< set 1: one operator
     gpu::PipelineLayoutHandle m_layout;
-    gpu::PipelineHandle m_pipeline;
+    gpu::PipelineHandle m_pipeline;         ///< background proxy
+    gpu::PipelineHandle m_operatorPipeline; ///< operator proxies
+    std::unique_ptr<OperatorStack> m_operators;
     gpu::Buffer m_uniforms;
     gpu::Buffer m_vertices;
     gpu::Image m_color;

@@ -20,50 +20,83 @@ Polygon clipPolygon(const Polygon& polygon, glm::dvec3 n, double d) {
     return out;
 }
 
-Polygon slicePolygon(const Box& box, glm::dvec3 normal, double offset) {
-    // Start from a square in the plane that covers the box, then clip it by the
-    // six faces. Generalizes to any convex proxy (bricks, deformed boxes).
+Proxy boxProxy(const Box& box) {
+    return orientedBoxProxy(glm::dmat4(1.0), box.lo, box.hi);
+}
+
+Proxy orientedBoxProxy(const glm::dmat4& localToWorld, glm::dvec3 lo, glm::dvec3 hi) {
+    // Local half-spaces q_i <= hi_i and -q_i <= -lo_i, with q = A^-1 (x - t):
+    // row_i(A^-1) . x <= hi_i + row_i(A^-1) . t.
+    Proxy proxy;
+    const glm::dmat3 inv = glm::inverse(glm::dmat3(localToWorld));
+    const glm::dvec3 t(localToWorld[3]);
+    for (int i = 0; i < 3; ++i) {
+        const glm::dvec3 row(inv[0][i], inv[1][i], inv[2][i]);
+        const double rt = glm::dot(row, t);
+        proxy.halfSpaces.push_back({row, hi[i] + rt});
+        proxy.halfSpaces.push_back({-row, -(lo[i] + rt)});
+    }
+    proxy.centre = glm::dvec3(localToWorld * glm::dvec4(0.5 * (lo + hi), 1.0));
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+        proxy.radius =
+            std::max(proxy.radius,
+                     glm::length(glm::dvec3(localToWorld * glm::dvec4(p, 1.0)) - proxy.centre));
+    }
+    return proxy;
+}
+
+Polygon slicePolygon(const Proxy& proxy, glm::dvec3 normal, double offset) {
+    // Start from a square in the plane that covers the proxy, then clip it by
+    // every face.
     const glm::dvec3 n = glm::normalize(normal);
-    const glm::dvec3 c = box.centre();
+    const glm::dvec3 c = proxy.centre;
+    if (std::abs(offset - glm::dot(n, c)) > proxy.radius) return {};
     const glm::dvec3 p0 = c + (offset - glm::dot(n, c)) * n;
     const glm::dvec3 a = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 u = glm::normalize(glm::cross(n, a));
     const glm::dvec3 v = glm::cross(n, u);
-    const double r = 2.0 * box.radius() + 1.0;
+    const double r = 2.0 * proxy.radius + 1.0;
     Polygon poly{p0 - r * u - r * v, p0 + r * u - r * v, p0 + r * u + r * v, p0 - r * u + r * v};
-    for (int axis = 0; axis < 3 && !poly.empty(); ++axis) {
-        glm::dvec3 e(0.0);
-        e[axis] = 1.0;
-        poly = clipPolygon(poly, e, box.hi[axis]);
-        if (!poly.empty()) poly = clipPolygon(poly, -e, -box.lo[axis]);
+    for (const auto& h : proxy.halfSpaces) {
+        poly = clipPolygon(poly, h.n, h.d);
+        if (poly.empty()) break;
     }
     return poly.size() >= 3 ? poly : Polygon{};
 }
 
-SliceSet buildSlices(const Box& box, glm::dvec3 eye, glm::dvec3 forward, double spacing,
-                     double minDepth) {
+Polygon slicePolygon(const Box& box, glm::dvec3 normal, double offset) {
+    return slicePolygon(boxProxy(box), normal, offset);
+}
+
+SliceSet buildSlices(const std::vector<Proxy>& proxies, glm::dvec3 eye, glm::dvec3 forward,
+                     double spacing, double minDepth) {
     SliceSet set;
     const glm::dvec3 f = glm::normalize(forward);
     double sMin = std::numeric_limits<double>::max(), sMax = -sMin;
-    for (int i = 0; i < 8; ++i) {
-        glm::dvec3 corner((i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y,
-                          (i & 4) ? box.hi.z : box.lo.z);
-        const double s = glm::dot(f, corner);
-        sMin = std::min(sMin, s);
-        sMax = std::max(sMax, s);
+    for (const Proxy& p : proxies) {
+        sMin = std::min(sMin, glm::dot(f, p.centre) - p.radius);
+        sMax = std::max(sMax, glm::dot(f, p.centre) + p.radius);
     }
     sMin = std::max(sMin, glm::dot(f, eye) + minDepth);
-    const double kFirst = std::ceil(sMin / spacing - 0.5);
-    for (double k = kFirst;; k += 1.0) {
+    for (double k = std::ceil(sMin / spacing - 0.5);; k += 1.0) {
         const double s = (k + 0.5) * spacing;
         if (s > sMax) break;
-        Polygon poly = slicePolygon(box, f, s);
-        if (poly.empty()) continue;
-        for (std::size_t i = 1; i + 1 < poly.size(); ++i) { // a fan: the polygon is convex
-            set.triangles.emplace_back(poly[0]);
-            set.triangles.emplace_back(poly[i]);
-            set.triangles.emplace_back(poly[i + 1]);
+        std::vector<SliceDraw> draws;
+        for (std::size_t i = 0; i < proxies.size(); ++i) {
+            const Polygon poly = slicePolygon(proxies[i], f, s);
+            if (poly.empty()) continue;
+            SliceDraw draw{static_cast<int>(i), static_cast<uint32_t>(set.triangles.size()), 0};
+            for (std::size_t v = 1; v + 1 < poly.size(); ++v) { // a fan: the polygon is convex
+                set.triangles.emplace_back(poly[0]);
+                set.triangles.emplace_back(poly[v]);
+                set.triangles.emplace_back(poly[v + 1]);
+            }
+            draw.count = static_cast<uint32_t>(set.triangles.size()) - draw.first;
+            draws.push_back(draw);
         }
+        if (draws.empty()) continue;
+        set.slices.push_back(std::move(draws));
         ++set.sliceCount;
     }
     return set;

@@ -1,9 +1,8 @@
+#include "scene/scene_sections.hpp"
+
 #include <algorithm>
 #include <cmath>
-
 #include <glm/gtc/matrix_transform.hpp>
-
-#include "scene/scene_sections.hpp"
 
 namespace cutaway::scene_detail {
 namespace {
@@ -22,17 +21,18 @@ glm::dmat4 parsePlacement(JsonReader& r, glm::dvec3& halfSize) {
     if (const nlohmann::json* m = r.find("matrix")) {
         for (const char* key : {"translate", "rotate", "scale"})
             if (r.find(key)) r.error(key, "not allowed together with \"matrix\"");
-        const auto v =
-            r.asNumbers(*m, r.pointerOf("matrix"), 16, 16, Range::closed(-1e6, 1e6));
+        const auto v = r.asNumbers(*m, r.pointerOf("matrix"), 16, 16, Range::closed(-1e6, 1e6));
         if (!v) return glm::dmat4(1.0);
         glm::dmat4 a(1.0);
         for (int row = 0; row < 4; ++row)
-            for (int col = 0; col < 4; ++col) a[col][row] = (*v)[std::size_t(row * 4 + col)];
+            for (int col = 0; col < 4; ++col)
+                a[col][row] = (*v)[std::size_t(row * 4 + col)];
         const bool affine = a[0][3] == 0 && a[1][3] == 0 && a[2][3] == 0 && a[3][3] == 1;
         const double det = glm::determinant(glm::dmat3(a));
         if (!affine || std::abs(det) < 1e-9)
             r.error("matrix", "expected an invertible affine matrix (last row 0 0 0 1)");
-        for (int c = 0; c < 3; ++c) halfSize[c] = glm::length(glm::dvec3(a[c]));
+        for (int c = 0; c < 3; ++c)
+            halfSize[c] = glm::length(glm::dvec3(a[c]));
         return a;
     }
     const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0), Range::closed(-1e6, 1e6));
@@ -47,7 +47,9 @@ glm::dmat4 parsePlacement(JsonReader& r, glm::dvec3& halfSize) {
     return glm::scale(a, halfSize);
 }
 
-float f(double v) { return static_cast<float>(v); }
+float f(double v) {
+    return static_cast<float>(v);
+}
 
 /// /operators/N/params of a peeler (lengths in mm along the box's local axes):
 ///  * hinge      number, mm from the box centre along local x, in (-scale/2, scale/2), default 0
@@ -68,7 +70,8 @@ void peeler(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
 
 /// retractor:
 ///  * length   number, mm along local y, in (0, scale_y], default 0.6 scale_y
-///  * depth    number, mm from the surface (local +z face) down, in (0, scale_z], default scale_z / 2
+///  * depth    number, mm from the surface (local +z face) down, in (0, scale_z], default scale_z /
+///  2
 ///  * opening  number, mm, full width of the opening at the surface, in [0, 0.9 scale_x],
 ///             default 0.3 scale_x
 void retractor(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
@@ -100,7 +103,9 @@ void pliers(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
     if (contraction >= 0.95)
         r.error("displacement",
                 "expected |displacement| * 1.72 / radius < 0.95 so the backward map converges "
-                "(got " + describeValue(contraction) + "): use a larger radius or a smaller displacement");
+                "(got " +
+                    describeValue(contraction) +
+                    "): use a larger radius or a smaller displacement");
     p.a = glm::vec4(glm::vec3(grasp), f(radius));
     p.b = glm::vec4(glm::vec3(d), 0.0f);
     p.kind.x = CW_OP_PLIERS;
@@ -151,8 +156,9 @@ void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators) {
         r.object("alignment", [&](JsonReader& a) {
             const std::string mode = a.string("mode", "axis", {"axis", "surface", "segment"});
             if (mode != "axis")
-                a.error("mode", "\"" + mode + "\" alignment is not supported yet by this "
-                                "version of cutaway (only \"axis\")");
+                a.error("mode", "\"" + mode +
+                                    "\" alignment is not supported yet by this "
+                                    "version of cutaway (only \"axis\")");
         });
         const auto resolution = r.integer("resolution", 64, 8, 256);
         op.resolution = glm::ivec3(static_cast<int>(resolution));

@@ -18,16 +18,25 @@ using glm::vec2;
 using glm::vec3;
 using glm::vec4;
 using uint = std::uint32_t;
+using glm::abs;
+using glm::atan; // atan(y, x) is GLSL's two-argument arc tangent (std::atan2)
 using glm::clamp;
+using glm::cos;
 using glm::cross;
 using glm::dot;
+using glm::inverse;
 using glm::length;
 using glm::max;
 using glm::min;
 using glm::mix;
 using glm::normalize;
+using glm::outerProduct;
 using glm::pow;
+using glm::sign;
+using glm::sin;
 using glm::smoothstep;
+using glm::sqrt;
+using glm::transpose;
 } // namespace cutaway::shader
 #define CW_NAMESPACE_BEGIN namespace cutaway::shader {
 #define CW_NAMESPACE_END }

@@ -1,0 +1,42 @@
+#pragma once
+// Where operators are, computed on the CPU from the shared header: the local
+// box their baked map must cover (V_T united with T_F(V_T), the deformed box
+// V'_T of the paper), its place in the world, and whether two operators
+// overlap (refused: they would be rendered twice).
+#include "scene/scene.hpp"
+
+#include <array>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace cutaway::operators {
+
+/// An axis-aligned box in some frame.
+struct LocalBox {
+    glm::dvec3 lo{-1.0};
+    glm::dvec3 hi{1.0};
+};
+
+/// V_T united with the bounds of T_F over V_T (sampled densely on the box and
+/// inside it), padded by one texel of `resolution`.
+LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolution);
+
+/// An oriented box in the world: the local box under an affine map.
+struct WorldBox {
+    glm::dmat4 localToWorld{1.0};
+    LocalBox local;
+    std::array<glm::dvec3, 8> corners() const;
+    glm::dvec3 lo() const; ///< world axis-aligned bounds
+    glm::dvec3 hi() const;
+};
+
+/// The operator's deformed box in the world.
+WorldBox worldBox(const OperatorSpec& op);
+
+/// Whether two oriented boxes intersect (separating-axis test on 15 axes).
+bool intersects(const WorldBox& a, const WorldBox& b);
+
+/// Throws InputError naming both operators when two deformed boxes overlap.
+void checkNoOverlap(const std::vector<OperatorSpec>& operators);
+
+} // namespace cutaway::operators

@@ -1,0 +1,67 @@
+#include "render/gpu_operators.hpp"
+
+#include "shared/operator_frame.h"
+
+#include <cstring>
+
+namespace cutaway::render {
+namespace {
+
+bool sameMap(const OperatorSpec& a, const OperatorSpec& b) {
+    return std::memcmp(&a.params, &b.params, sizeof a.params) == 0 && a.resolution == b.resolution;
+}
+
+shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::WorldBox& box) {
+    shader::OperatorUniforms u{};
+    u.localToWorld = glm::mat4(spec.localToWorld);
+    u.worldToLocal = glm::mat4(glm::inverse(spec.localToWorld));
+    const glm::dvec3 texel = (box.local.hi - box.local.lo) / glm::dvec3(spec.resolution);
+    u.mapLo = glm::vec4(glm::vec3(box.local.lo), 0.0f);
+    u.mapHi = glm::vec4(glm::vec3(box.local.hi),
+                        static_cast<float>(std::min({texel.x, texel.y, texel.z})));
+    // D of Eq. 7 from millimetres to local units: the mean scale of the frame.
+    const glm::dmat3 a(spec.localToWorld);
+    const double scale = (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
+    u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), 0.0f, 0.0f, 0.0f);
+    return u;
+}
+
+} // namespace
+
+OperatorStack::OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setLayout,
+                             VkSampler sampler)
+    : m_ctx(ctx), m_setLayout(setLayout), m_sampler(sampler), m_baker(ctx) {}
+
+void OperatorStack::update(const std::vector<OperatorSpec>& specs) {
+    operators::checkNoOverlap(specs);
+    m_operators.resize(specs.size());
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        auto& op = m_operators[i];
+        const OperatorSpec& spec = specs[i];
+        const bool rebake = !op || !sameMap(op->spec, spec);
+        if (!op) {
+            op = std::make_unique<GpuOperator>();
+            op->uniforms = gpu::createBuffer(m_ctx, sizeof(shader::OperatorUniforms),
+                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+            op->set = gpu::allocateDescriptorSet(m_ctx, m_setLayout,
+                                                 {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}});
+            gpu::writeBufferDescriptor(m_ctx, op->set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                       op->uniforms.buffer.get(), sizeof(shader::OperatorUniforms));
+        }
+        op->box = operators::worldBox(spec);
+        if (rebake) {
+            op->map = m_baker.bake(spec.params, glm::vec3(op->box.local.lo),
+                                   glm::vec3(op->box.local.hi), spec.resolution);
+            gpu::writeImageDescriptor(m_ctx, op->set.set, 1,
+                                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, op->map.view.get(),
+                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
+            ++m_bakes;
+        }
+        op->spec = spec;
+        const shader::OperatorUniforms u = uniformsOf(spec, op->box);
+        std::memcpy(op->uniforms.mapped, &u, sizeof u);
+    }
+}
+
+} // namespace cutaway::render

@@ -1,0 +1,45 @@
+#pragma once
+// The operators of the frame on the device: each one's baked map (remade only
+// when its parameters or resolution change; moving an operator only updates
+// its uniforms), its place in the world, and the descriptor set the operator
+// slicing shader reads (set 1: uniforms, map).
+#include "bake/operator_bake.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+#include "operators/operator_geometry.hpp"
+#include "scene/scene.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace cutaway::render {
+
+struct GpuOperator {
+    OperatorSpec spec;
+    operators::WorldBox box; ///< the deformed box in the world: the operator's proxy
+    gpu::Image map;
+    gpu::Buffer uniforms;
+    gpu::DescriptorSet set;
+};
+
+class OperatorStack {
+public:
+    OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setLayout, VkSampler sampler);
+
+    /// Makes the device state match `specs`: refuses overlapping operators
+    /// (InputError naming both), bakes what changed.
+    void update(const std::vector<OperatorSpec>& specs);
+
+    const std::vector<std::unique_ptr<GpuOperator>>& operators() const { return m_operators; }
+    int bakes() const { return m_bakes; } ///< maps baked so far, for tests
+
+private:
+    const gpu::Context& m_ctx;
+    VkDescriptorSetLayout m_setLayout;
+    VkSampler m_sampler;
+    bake::OperatorBaker m_baker;
+    std::vector<std::unique_ptr<GpuOperator>> m_operators;
+    int m_bakes = 0;
+};
+
+} // namespace cutaway::render

@@ -1,0 +1,43 @@
+// GLSL only: the resources and steps every slicing fragment shader shares.
+// (Math that the C++ tests also run lives in shaders/shared/.)
+#ifndef CUTAWAY_SLICE_COMMON_H
+#define CUTAWAY_SLICE_COMMON_H
+
+#include "shared/frame.h"
+#include "shared/shading.h"
+
+layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms u; };
+layout(set = 0, binding = 1) uniform sampler3D volumeTex;
+layout(set = 0, binding = 2) uniform sampler3D gradientTex;
+layout(set = 0, binding = 3) uniform sampler2D transferTex;
+
+vec3 toTexture(vec3 world) { return (u.worldToTexture * vec4(world, 1.0)).xyz; }
+
+vec3 toEyeFrom(vec3 world) {
+    return u.eye.w > 0.5 ? normalize(u.eye.xyz - world) : -u.viewDir.xyz;
+}
+
+// 1 / cos of the angle between this pixel's ray and the view direction: planes
+// are u.viewDir.w apart along the view, an oblique ray crosses more material.
+float obliquityOf(vec3 toEye) { return 1.0 / max(dot(-toEye, u.viewDir.xyz), 1e-3); }
+
+// Premultiplied colour of the slab from `front` to `back` (normalized values).
+vec4 classifySlab(float front, float back, float obliquity) {
+    if (u.flags.z > 0.5) {
+        vec4 slab = texture(transferTex, vec2(front, back) * u.valueToTf.x + u.valueToTf.y);
+        if (slab.a <= 0.0) return vec4(0.0);
+        float alpha = correctOpacity(slab.a, obliquity); // the table is for an axial slab
+        return vec4(slab.rgb * (alpha / slab.a), alpha);
+    }
+    vec4 c = texture(transferTex, vec2(front * u.valueToTf.x + u.valueToTf.y, 0.5));
+    if (c.a <= 0.0) return vec4(0.0);
+    float alpha = correctOpacity(c.a, u.viewDir.w * obliquity / u.valueToTf.z);
+    return vec4(c.rgb * alpha, alpha);
+}
+
+vec4 shade(vec4 sampleColor, vec4 gradient, vec3 toEye) {
+    Lighting light = lightSample(gradient, toEye, u);
+    return vec4(sampleColor.rgb * light.diffuse + light.specular * sampleColor.a, sampleColor.a);
+}
+
+#endif

@@ -1,0 +1,38 @@
+// What the slicing pass knows about one operator, shared by C++ and GLSL
+// (std140: only vec4 and mat4 members).
+#ifndef CUTAWAY_OPERATOR_FRAME_H
+#define CUTAWAY_OPERATOR_FRAME_H
+
+#include "shared/glsl_cpp.h"
+
+CW_NAMESPACE_BEGIN
+
+struct OperatorUniforms {
+    mat4 worldToLocal; // world (mm) -> the operator's local frame (its box is [-1, 1]^3)
+    mat4 localToWorld; // A of Eq. 8
+    vec4 mapLo;        // xyz: local corner of the baked map's domain (the deformed box V'_T)
+    vec4 mapHi;        // xyz: opposite corner; w: one texel of the map, local units
+    vec4 band;         // x: D of Eq. 7 in local units (0: no blending)
+};
+
+// Baking: the push constants of operator_bake.comp.
+struct OperatorBakeParams {
+    vec4 a; // OperatorParams, unpacked (push constants cannot hold nested structs portably)
+    vec4 b;
+    vec4 kind;
+    vec4 mapLo;
+    vec4 mapHi;
+    ivec3 dims;
+    float pad0;
+};
+
+CW_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 3 * 16);
+static_assert(offsetof(cutaway::shader::OperatorUniforms, mapLo) == 128);
+static_assert(offsetof(cutaway::shader::OperatorUniforms, band) == 160);
+static_assert(sizeof(cutaway::shader::OperatorBakeParams) == 96);
+#endif
+
+#endif

@@ -1,0 +1,187 @@
+// Operators rendered on lavapipe: properties from the paper that a wrong
+// implementation breaks. Small images and phantoms keep it quick.
+#include "bake/operator_bake.hpp"
+#include "core/error.hpp"
+#include "gpu/resources.hpp"
+#include "gpu_fixture.hpp"
+#include "job/render_job.hpp"
+#include "operators/operator_geometry.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/slice_renderer.hpp"
+#include "scene/scene.hpp"
+
+#include <glm/gtc/packing.hpp>
+#include <gtest/gtest.h>
+
+namespace cutaway::test {
+namespace {
+
+// The head phantom seen from straight above, orthographic, 48^3 voxels of 1 mm.
+Scene topView(int pixels = 48) {
+    Scene s = headScene(48, pixels, pixels);
+    s.camera.useOrbit = false;
+    s.camera.eye = glm::dvec3(0.0, 0.0, 400.0);
+    s.camera.target = glm::dvec3(0.0);
+    s.camera.up = glm::dvec3(0.0, 1.0, 0.0);
+    s.camera.projection = Projection::Orthographic;
+    s.camera.orthoHeight = 60.0;
+    return s;
+}
+
+Scene parsedWith(const std::string& operators, int pixels = 48) {
+    Scene s = topView(pixels);
+    Scene parsed = parseScene(nlohmann::json::parse(R"({"version": 1, "volume": {"phantom": "head"},
+        "operators": )" + operators + "}"),
+                              "/nonexistent", "test");
+    s.operators = parsed.operators;
+    return s;
+}
+
+float alpha(const Image& img, int x, int y) {
+    return img.pixel(x, y)[3];
+}
+
+} // namespace
+
+TEST_F(GpuTest, RetractorOpeningIsEmptySeenStraightIntoIt) {
+    // The opening narrows to nothing at the incision's bottom (a wedge), so
+    // the box reaches far below the volume (z from -60 to +24 mm): looking
+    // straight down into the opening sees no material at all.
+    Scene with = parsedWith(R"([{ "type": "retractor",
+        "placement": { "translate": [0, 0, -18], "scale": [40, 44, 84] },
+        "params": { "length": 44, "depth": 84, "opening": 16 } }])");
+    Scene without = topView();
+    const Image open = renderScene(ctx(), with);
+    const Image closed = renderScene(ctx(), without);
+    // Pixel columns of x = 0 (image centre) for |y| < 8 mm: 48 px over 60 mm.
+    for (int y = 24 - 8; y <= 24 + 8; ++y) {
+        for (int x : {23, 24}) {
+            EXPECT_GT(alpha(closed, x, y), 0.9f) << "control: the head is opaque here";
+            EXPECT_EQ(alpha(open, x, y), 0.0f) << "pixel " << x << "," << y << " in the opening";
+        }
+    }
+}
+
+TEST_F(GpuTest, IdentityParametersRenderLikeNoOperator) {
+    const Image none = renderScene(ctx(), topView());
+    for (
+        const char* op : {
+            R"({ "type": "peeler", "placement": { "translate": [6, 0, 10], "scale": [30, 30, 20] },
+                  "params": { "angle": 0 } })",
+            R"({ "type": "dilator", "placement": { "translate": [-4, 3, 8], "scale": [30, 30, 30] },
+                  "params": { "magnification": 1 } })",
+            R"({ "type": "pliers", "placement": { "translate": [0, -5, 12], "scale": [30, 30, 30] },
+                  "params": { "displacement": [0, 0, 0] } })",
+            R"({ "type": "retractor", "placement": { "scale": [30, 30, 30] },
+                  "params": { "opening": 0 } })"}) {
+        SCOPED_TRACE(op);
+        Scene s = parsedWith(std::string("[") + op + "]");
+        s.camera.useOrbit = true; // an oblique view crosses the operator's box faces
+        s.camera.azimuthDeg = 35.0;
+        s.camera.elevationDeg = 30.0;
+        s.camera.distance = 160.0; // fixed: the fit would grow with the operator's box
+        s.camera.projection = Projection::Perspective;
+        Scene n = s;
+        n.operators.clear();
+        const ImageDiff d = compareImages(renderScene(ctx(), s), renderScene(ctx(), n));
+        // The operator path maps through its half-float map and a matrix round
+        // trip; the image may differ by float noise only.
+        EXPECT_LE(d.maxAbs, 2e-3f) << "rms " << d.rms;
+    }
+}
+
+TEST_F(GpuTest, TwoOperatorsSideBySideComposeLikeEachAlone) {
+    const std::string left = R"({ "type": "retractor",
+        "placement": { "translate": [-12, 0, 12], "scale": [20, 30, 24] },
+        "params": { "opening": 8 } })";
+    const std::string right = R"({ "type": "pliers",
+        "placement": { "translate": [12, 0, 12], "scale": [20, 30, 24] },
+        "params": { "radius": 9, "displacement": [3, 0, 0] } })";
+    const Image a = renderScene(ctx(), parsedWith("[" + left + "]"));
+    const Image b = renderScene(ctx(), parsedWith("[" + right + "]"));
+    const Image both = renderScene(ctx(), parsedWith("[" + left + "," + right + "]"));
+    const Image none = renderScene(ctx(), topView());
+    // Seen from above the two boxes project to disjoint regions, so each pixel
+    // of `both` is that of `a`, of `b`, or of neither: both = a + b - none.
+    float worst = 0.0f, changedA = 0.0f, changedB = 0.0f;
+    for (std::size_t i = 0; i < both.rgba.size(); ++i) {
+        worst = std::max(worst, std::abs(both.rgba[i] - (a.rgba[i] + b.rgba[i] - none.rgba[i])));
+        changedA = std::max(changedA, std::abs(a.rgba[i] - none.rgba[i]));
+        changedB = std::max(changedB, std::abs(b.rgba[i] - none.rgba[i]));
+    }
+    EXPECT_GT(changedA, 0.1f) << "the retractor should change the image";
+    EXPECT_GT(changedB, 0.05f) << "the pliers should change the image";
+    EXPECT_LE(worst, 1e-4f) << "a region drawn twice or not at all";
+}
+
+TEST_F(GpuTest, OverlappingOperatorsAreRefusedNamingBoth) {
+    Scene s = parsedWith(R"([
+        { "type": "retractor", "name": "left cut", "placement": { "translate": [-5, 0, 0], "scale": [20, 20, 20] } },
+        { "type": "pliers", "name": "grab", "placement": { "translate": [5, 0, 0], "scale": [20, 20, 20] } }])");
+    try {
+        renderScene(ctx(), s);
+        FAIL() << "expected overlapping operators to be refused";
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("left cut"), std::string::npos) << what;
+        EXPECT_NE(what.find("grab"), std::string::npos) << what;
+        EXPECT_NE(what.find("overlap"), std::string::npos) << what;
+    }
+}
+
+TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
+    Scene s = parsedWith(R"([
+        { "type": "peeler", "placement": { "scale": [40, 40, 20] }, "params": { "angle": 150, "hinge": -5 } },
+        { "type": "retractor", "placement": { "translate": [100, 0, 0], "scale": [40, 40, 40] } },
+        { "type": "pliers", "placement": { "translate": [200, 0, 0], "scale": [40, 40, 40] },
+          "params": { "radius": 15, "displacement": [4, -2, 5] } },
+        { "type": "dilator", "placement": { "translate": [300, 0, 0], "scale": [40, 40, 40] },
+          "params": { "radius": 6, "magnification": 2.5 } }])");
+    bake::OperatorBaker baker(ctx());
+    for (const OperatorSpec& op : s.operators) {
+        SCOPED_TRACE(op.name);
+        const glm::ivec3 dims(20, 18, 16);
+        const operators::LocalBox box = operators::deformedBounds(op.params, dims);
+        const gpu::Image map = baker.bake(op.params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
+        const auto bytes =
+            gpu::downloadImage(ctx(), map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
+        const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
+        float worst = 0.0f;
+        for (int z = 0; z < dims.z; ++z)
+            for (int y = 0; y < dims.y; ++y)
+                for (int x = 0; x < dims.x; ++x) {
+                    const glm::vec3 q = glm::mix(glm::vec3(box.lo), glm::vec3(box.hi),
+                                                 (glm::vec3(x, y, z) + 0.5f) / glm::vec3(dims));
+                    glm::vec4 expected = shader::operatorBackward(q, op.params);
+                    expected = glm::vec4(glm::vec3(expected) - q, expected.w);
+                    const std::size_t t = 4 * std::size_t(x + dims.x * (y + dims.y * z));
+                    for (int c = 0; c < 4; ++c) {
+                        const float got = glm::unpackHalf1x16(halves[t + std::size_t(c)]);
+                        const float e = expected[c];
+                        // Half precision: 2^-11 relative, plus GPU vs CPU float math.
+                        worst = std::max(worst, std::abs(got - e) / (1.0f + std::abs(e)));
+                    }
+                }
+        EXPECT_LE(worst, 2e-3f);
+    }
+}
+
+TEST_F(GpuTest, MovingAnOperatorDoesNotRebakeItsMap) {
+    const auto volume = job::loadSceneVolume(topView());
+    bake::GradientBaker gradients(ctx());
+    const render::GpuVolume gv =
+        render::prepareVolume(ctx(), gradients, volume, job::sceneWindow(topView(), volume));
+    render::SliceRenderer renderer(ctx());
+    Scene s = parsedWith(
+        R"([{ "type": "retractor", "placement": { "translate": [0, 0, 10], "scale": [20, 20, 20] } }])");
+    renderer.render(s, gv);
+    EXPECT_EQ(renderer.lastStats().operatorBakes, 1);
+    s.operators[0].localToWorld[3].x += 5.0; // moved: same map
+    renderer.render(s, gv);
+    EXPECT_EQ(renderer.lastStats().operatorBakes, 1);
+    s.operators[0].params.a.z *= 0.5f; // a narrower opening: a new map
+    renderer.render(s, gv);
+    EXPECT_EQ(renderer.lastStats().operatorBakes, 2);
+}
+
+} // namespace cutaway::test

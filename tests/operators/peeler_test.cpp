@@ -1,0 +1,259 @@
+// Peeler (a bend, Barr's global deformation): round trip, the hole is empty,
+// fixed faces, the analytic Jacobian, and a signed distance with unit gradient
+// at the cut faces, for a typical, an extreme and two shallow folds.
+#include "operator_test_util.hpp"
+
+#include <vector>
+
+namespace cutaway::test {
+namespace {
+
+struct PeelerCase {
+    const char* name;
+    OperatorParams o;
+};
+
+std::vector<PeelerCase> peelerCases() {
+    return {
+        {"typical", peelerParams(-0.2f, 0.3f, 0.2f, 2.0f, 0.6f)},
+        // Thick, sharp, folded flat back, the whole width: |y| = 1 are cuts.
+        {"extreme", peelerParams(-0.9f, 1.5f, 0.02f, kPi, 1.0f)},
+        // Shallow fold whose straight part still lies in the hole it left.
+        {"shallow", peelerParams(-0.5f, 0.4f, 0.3f, 0.25f, 0.8f)},
+        // Large radius: the flap ends on the bend (1 - h < R theta).
+        {"endOnBend", peelerParams(0.5f, 0.1f, 2.0f, 0.5f, 0.3f)},
+    };
+}
+
+float hingeOf(const OperatorParams& o) {
+    return o.a.x;
+}
+float thicknessOf(const OperatorParams& o) {
+    return o.a.y;
+}
+float radiusOf(const OperatorParams& o) {
+    return o.a.z;
+}
+float angleOf(const OperatorParams& o) {
+    return o.a.w;
+}
+float halfWidthOf(const OperatorParams& o) {
+    return std::min(o.b.x, 1.0f);
+}
+
+// -1 off the flap, 0 on its bend, 1 on its straight part.
+int flapPart(glm::vec3 q, const OperatorParams& o) {
+    return static_cast<int>(shader::peelerFlapCoords(q, o).z);
+}
+
+// A point of the lifted layer, not within `margin` of its boundary.
+bool liftedWithMargin(glm::vec3 p, const OperatorParams& o, float margin) {
+    const float e = 1.0f - p.z;
+    return p.x > hingeOf(o) + margin && p.x < 1.0f - margin &&
+           std::abs(p.y) < halfWidthOf(o) - margin && e > margin && e < thicknessOf(o) - margin;
+}
+
+// Even i: anywhere in the box; odd i: in the layer that is lifted.
+glm::vec3 samplePoint(Rng& rng, const OperatorParams& o, int i) {
+    if (i % 2 == 0) return rng.inUnitBox();
+    return rng.inBox(glm::vec3(hingeOf(o), -halfWidthOf(o), 1.0f - thicknessOf(o)),
+                     glm::vec3(1.0f, halfWidthOf(o), 1.0f));
+}
+
+bool nearLayerBoundary(glm::vec3 p, const OperatorParams& o, float margin) {
+    const float e = 1.0f - p.z;
+    return std::abs(p.x - hingeOf(o)) < margin ||
+           std::abs(std::abs(p.y) - halfWidthOf(o)) < margin ||
+           std::abs(e - thicknessOf(o)) < margin || 1.0f - p.x < margin;
+}
+
+} // namespace
+
+TEST(Peeler, BackwardUndoesForward) {
+    for (const PeelerCase& c : peelerCases()) {
+        SCOPED_TRACE(c.name);
+        Rng rng(11);
+        float worst = 0.0f;
+        int lifted = 0;
+        for (int i = 0; i < 20000; ++i) {
+            const glm::vec3 p = samplePoint(rng, c.o, i);
+            if (nearLayerBoundary(p, c.o, 1e-5f)) continue; // rounding may pick the other side
+            const glm::vec4 back = shader::operatorBackward(shader::operatorForward(p, c.o), c.o);
+            worst = std::max(worst, maxAbs(glm::vec3(back) - p));
+            EXPECT_GT(back.w, 0.0f) << "p " << p.x << " " << p.y << " " << p.z;
+            lifted += liftedWithMargin(p, c.o, 0.0f) ? 1 : 0;
+        }
+        EXPECT_LE(worst, 1e-5f);
+        EXPECT_GT(lifted, 9000) << "the test should move much of the layer";
+        recordWorst(c.name, worst);
+    }
+}
+
+TEST(Peeler, TheHoleIsEmptyAndFilledWithTheIdentity) {
+    for (const PeelerCase& c : peelerCases()) {
+        SCOPED_TRACE(c.name);
+        const OperatorParams& o = c.o;
+        Rng rng(12);
+        const glm::vec3 lo(hingeOf(o), -halfWidthOf(o), 1.0f - thicknessOf(o));
+        const glm::vec3 hi(1.0f, halfWidthOf(o), 1.0f);
+        // Where the bend starts it still covers the hole; beyond this reach,
+        // a fold past a right angle has left the hole entirely empty.
+        const float reach = std::sqrt(thicknessOf(o) * (thicknessOf(o) + 2.0f * radiusOf(o)));
+        int empty = 0;
+        for (int i = 0; i < 10000; ++i) {
+            const glm::vec3 q = rng.inBox(lo, hi);
+            const glm::vec4 back = shader::operatorBackward(q, o);
+            if (back.w > 0.0f) {
+                // Only the flap may have a pre-image here, and then a genuine one.
+                const glm::vec3 p(back);
+                EXPECT_TRUE(liftedWithMargin(p, o, -1e-6f));
+                EXPECT_LE(maxAbs(shader::operatorForward(p, o) - q), 1e-5f);
+                if (angleOf(o) >= 0.5f * kPi) {
+                    EXPECT_LE(q.x - hingeOf(o), reach + 1e-4f);
+                }
+                continue;
+            }
+            ++empty;
+            EXPECT_EQ(glm::vec3(back), q) << "the hole is filled with the identity";
+        }
+        if (angleOf(o) >= 0.5f * kPi) {
+            // On purpose: points of the hole past the bend's reach are all empty.
+            for (int i = 0; i < 2000; ++i) {
+                const glm::vec3 q = rng.inBox(lo + glm::vec3(reach + 0.01f, 0.0f, 0.0f), hi);
+                EXPECT_LE(signedDistance(q, o), 0.0f) << q.x << " " << q.y << " " << q.z;
+            }
+        }
+        EXPECT_GT(empty, 1000);
+    }
+}
+
+TEST(Peeler, ZeroAngleIsExactlyTheIdentity) {
+    const OperatorParams o = peelerParams(-0.2f, 0.3f, 0.2f, 0.0f, 0.6f);
+    Rng rng(13);
+    for (int i = 0; i < 10000; ++i) {
+        const glm::vec3 q = rng.inBox(glm::vec3(-1.5f), glm::vec3(1.5f));
+        EXPECT_EQ(shader::operatorForward(q, o), q);
+        EXPECT_EQ(shader::operatorBackward(q, o), glm::vec4(q, CW_NO_CUT));
+        EXPECT_EQ(shader::operatorJacobian(q, o), glm::mat3(1.0f));
+    }
+}
+
+TEST(Peeler, UntouchedFacesStayFixed) {
+    for (const PeelerCase& c : peelerCases()) {
+        SCOPED_TRACE(c.name);
+        Rng rng(14);
+        std::vector<std::pair<int, float>> faces = {{0, -1.0f}, {2, -1.0f}};
+        if (halfWidthOf(c.o) < 1.0f) faces.insert(faces.end(), {{1, -1.0f}, {1, 1.0f}});
+        for (const auto& [axis, side] : faces)
+            for (int i = 0; i < 2000; ++i) {
+                const glm::vec3 q = onFace(rng, axis, side);
+                const glm::vec4 back = shader::operatorBackward(q, c.o);
+                EXPECT_LE(maxAbs(glm::vec3(back) - q), 1e-6f);
+                EXPECT_GT(back.w, 0.0f);
+                EXPECT_LE(maxAbs(shader::operatorForward(q, c.o) - q), 1e-6f);
+            }
+    }
+}
+
+TEST(Peeler, JacobianMatchesFiniteDifferences) {
+    const float h = 1e-3f;
+    for (const PeelerCase& c : peelerCases()) {
+        SCOPED_TRACE(c.name);
+        const OperatorParams& o = c.o;
+        Rng rng(15);
+        const float top = 1.0f + 2.0f * radiusOf(o) + thicknessOf(o);
+        float worst = 0.0f;
+        int onFlap = 0;
+        for (int i = 0; i < 10000; ++i) {
+            // Half on the moved material, half anywhere in the deformed box.
+            const glm::vec3 q =
+                i % 2 ? shader::operatorForward(samplePoint(rng, o, 1), o)
+                      : rng.inBox(glm::vec3(-1.5f, -1.0f, -1.0f), glm::vec3(1.5f, 1.0f, top));
+            const int part = flapPart(q, o);
+            bool straddles = false; // the map is only C0 across the flap's outline,
+            for (int axis = 0; axis < 3 && !straddles; ++axis) // the hinge and phi = theta
+                for (float side : {-2.0f * h, 2.0f * h}) {
+                    glm::vec3 step(0.0f);
+                    step[axis] = side;
+                    straddles = straddles || flapPart(q + step, o) != part;
+                }
+            if (straddles) continue;
+            onFlap += part >= 0 ? 1 : 0;
+            const glm::mat3 analytic = shader::operatorJacobian(q, o);
+            const float err = jacobianError(analytic, finiteDifferenceJacobian(q, o, h));
+            worst = std::max(worst, err);
+            EXPECT_LE(err, 2e-3f) << "q " << q.x << " " << q.y << " " << q.z << " part " << part;
+        }
+        EXPECT_GT(onFlap, 3000);
+        recordWorst(c.name, worst);
+    }
+}
+
+// The renderer's band |w| < D and cut normal grad w must be in real units.
+TEST(Peeler, SignedDistanceHasUnitGradientAtTheCuts) {
+    const float h = 1e-3f;
+    for (const PeelerCase& c : peelerCases()) {
+        SCOPED_TRACE(c.name);
+        const OperatorParams& o = c.o;
+        const float t = thicknessOf(o);
+        const float hw = halfWidthOf(o);
+        const float floorZ = 1.0f - t;
+        Rng rng(16);
+        float worst = 0.0f;
+        int tested = 0;
+        int inAir = 0;
+        auto check = [&](glm::vec3 q, glm::vec3 expectedGradient) {
+            const glm::vec3 g = finiteDifferenceGradient(q, o, h);
+            const float err = maxAbs(g - expectedGradient);
+            worst = std::max(worst, err);
+            ++tested;
+            EXPECT_LE(err, 2e-2f) << "q " << q.x << " " << q.y << " " << q.z << " grad " << g.x
+                                  << " " << g.y << " " << g.z;
+        };
+        for (int i = 0; i < 4000; ++i) {
+            const float delta = rng.uniform(0.003f, 0.02f);
+            const float x = rng.uniform(hingeOf(o) + 0.05f, 0.9f);
+            const float y = rng.uniform(-0.7f, 0.7f) * hw;
+            // Across the hole's floor: empty above (w = -delta), material below
+            // (w = +delta), one normal -z into the material, where the flap is far.
+            const glm::vec3 above(x, y, floorZ + delta);
+            if (shader::peelerFlapDistance(above, o) > 0.05f) {
+                EXPECT_NEAR(signedDistance(above, o), -delta, 1e-5f);
+                check(above, glm::vec3(0.0f, 0.0f, -1.0f));
+            }
+            const glm::vec3 below(x, y, floorZ - delta);
+            EXPECT_NEAR(signedDistance(below, o), delta, 1e-5f);
+            check(below, glm::vec3(0.0f, 0.0f, -1.0f));
+            // Beside the hole: material at |y| = hw + delta, normal away from the hole.
+            if (hw < 1.0f && x < 0.95f && x > hingeOf(o) + 0.05f) {
+                const glm::vec3 beside(x, std::copysign(hw + delta, y), 1.0f - 0.5f * t);
+                check(beside, glm::vec3(0.0f, std::copysign(1.0f, y), 0.0f));
+            }
+            // Inside the flap, delta under its underside; and, where the
+            // underside faces air, just outside it (the air within 2t of the
+            // flap is empty, so w changes sign on the flap's outline).
+            const glm::vec3 p(x, y, floorZ + delta);
+            const glm::vec3 q = shader::operatorForward(p, o);
+            const glm::vec3 out = shader::operatorForward(glm::vec3(x, y, floorZ + 0.5f * t), o);
+            const glm::vec3 normal = glm::normalize(q - out); // outward, across the layer
+            if (flapPart(q, o) >= 0 && shader::peelerEndDistance(q, o) > 0.05f &&
+                hw - std::abs(y) > 0.05f) {
+                EXPECT_NEAR(signedDistance(q, o), delta, 1e-4f);
+                check(q, -normal);
+                const glm::vec3 air = q + 2.0f * delta * normal;
+                if (air.z > 1.0f + 0.05f && flapPart(air, o) < 0 && 2.0f * delta < t) {
+                    EXPECT_NEAR(signedDistance(air, o), -delta, 1e-4f);
+                    check(air, -normal);
+                    ++inAir;
+                }
+            }
+        }
+        EXPECT_GT(tested, 2000);
+        if (angleOf(o) > 1.0f) {
+            EXPECT_GT(inAir, 1000) << "the flap's underside faces the air";
+        }
+        recordWorst(c.name, worst);
+    }
+}
+
+} // namespace cutaway::test
