@@ -53,13 +53,14 @@ float f(double v) {
 
 /// /operators/N/params of a peeler (lengths in mm along the box's local axes):
 ///  * hinge      number, mm from the box centre along local x, in (-scale/2, scale/2), default 0
-///  * thickness  number, mm, layer lifted, in (0, scale_z], default scale_z / 10
+///  * thickness  number, mm, layer lifted, in (0, scale_z), default scale_z / 10 (a layer
+///               as deep as the box would make the bottom face a cut)
 ///  * radius     number, mm, bend radius, in (0, 1e5], default scale_z / 10
 ///  * angle      number, degrees, fold angle, in [0, 180], default 120
 ///  * width      number, mm along local y, in (0, 1e5], default scale_y (the whole box)
 void peeler(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
     const double hinge = r.number("hinge", 0.0, Range::open(-h.x, h.x));
-    const double thickness = r.number("thickness", 0.2 * h.z, Range::openClosed(0.0, 2.0 * h.z));
+    const double thickness = r.number("thickness", 0.2 * h.z, Range::open(0.0, 2.0 * h.z));
     const double radius = r.number("radius", 0.2 * h.z, Range::openClosed(0.0, 1e5));
     const double angle = r.number("angle", 120.0, Range::closed(0.0, 180.0));
     const double width = r.number("width", 2.0 * h.y, Range::openClosed(0.0, 1e5));

@@ -64,7 +64,7 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 // c = (h, *, 1 + R): the layer point at arc length s = x - h goes to angle
 // phi = s / R (the direction from c at angle phi is n(phi) = (sin phi, 0,
 // -cos phi), so the hinge point (h, 1) is on the cylinder) at radius R + e;
-// beyond phi = theta it continues straight along t(theta) = (cos theta, 0,
+// beyond phi = theta it continues straight along tau(theta) = (cos theta, 0,
 // sin theta). The skin (e = 0) ends up facing the cylinder, the underside
 // (e = t) outward. Arc length is kept on the skin; deeper material stretches
 // by (R + e) / R around the bend.
@@ -228,7 +228,7 @@ CW_FUNC vec4 peelerBackward(vec3 q, OperatorParams o) {
 CW_FUNC mat3 peelerJacobian(vec3 q, OperatorParams o) {
     vec3 f = peelerFlapCoords(q, o);
     if (f.z < 0.0f) return mat3(1.0f);
-    if (f.z > 0.5f) { // straight part: a rigid motion, x from t(theta), z from -n(theta)
+    if (f.z > 0.5f) { // straight part: a rigid motion, x from tau(theta), z from -n(theta)
         float c = cos(o.a.w);
         float s = sin(o.a.w);
         return mat3(vec3(c, 0.0f, -s), vec3(0.0f, 1.0f, 0.0f), vec3(s, 0.0f, c));
@@ -396,9 +396,12 @@ CW_FUNC mat3 pliersJacobian(vec3 q, OperatorParams o) {
 // strictly increasing whenever m rho < 1, and its inverse is a quadratic
 // equation solved in closed form.
 //   a.x  rho    inner radius, uniformly magnified, in [0, 1)
-//   a.y  m      magnification, > 0, with m rho < 1 (F stays increasing;
-//               the inverse's Jacobian grows like 1 / (1 - m rho) as m rho
-//               approaches 1); 1 is the identity; below 1 shrinks
+//   a.y  m      magnification, > 0, with m rho < 1 (F stays increasing);
+//               1 is the identity; below 1 shrinks. The shell [rho, 1] is
+//               squeezed into [m rho, 1]: where m exceeds the mean slope
+//               (1 - m rho) / (1 - rho) a lot, F' dips far below it (min F'
+//               0.30 for m = 2, rho = 0.3; 0.012 for m = 2.1, rho = 0.45;
+//               0.003 for m = 10, rho = 0.09), and T_B's Jacobian is 1 / F'.
 //   a.z  shape  0 sphere, 1 cylinder about the local z axis
 // Faces that stay fixed: all six for the sphere (it ends at radius 1); |x| = 1
 // and |y| = 1 for the cylinder, which runs through z = +-1. No cut: w =

@@ -118,8 +118,7 @@ inline float jacobianError(const glm::mat3& analytic, const glm::mat3& numeric) 
     return maxAbs(analytic - numeric) / std::max(1.0f, maxAbs(analytic));
 }
 
-// The six face centres' neighbourhoods: `count` random points on face
-// (axis, side) of the unit box.
+// A random point on the face (axis, side = -1 or 1) of the unit box.
 inline glm::vec3 onFace(Rng& rng, int axis, float side) {
     glm::vec3 p = rng.inUnitBox();
     p[axis] = side;
