@@ -43,7 +43,11 @@ std::string pointerWriteProblem(const nlohmann::json& document, const std::strin
             auto it = node->find(nlohmann::json::json_pointer("/" + token).back());
             node = it == node->end() ? nullptr : &*it;
         } else {
-            return "\"" + target.substr(0, start - 1) + "\" holds a value, not an object";
+            // Built piecewise: GCC 12 warns (-Wrestrict, falsely) on "x" + substr.
+            std::string message = "\"";
+            message += target.substr(0, start - 1);
+            message += "\" holds a value, not an object";
+            return message;
         }
         start = end + 1;
     }
