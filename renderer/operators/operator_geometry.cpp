@@ -8,7 +8,7 @@
 
 namespace cutaway::operators {
 
-LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolution) {
+LocalBox materialBounds(const shader::OperatorParams& params) {
     LocalBox box; // starts as V_T itself
     constexpr int n = 24;
     for (int k = 0; k <= n; ++k)
@@ -20,7 +20,11 @@ LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolut
                 box.lo = glm::min(box.lo, q);
                 box.hi = glm::max(box.hi, q);
             }
-    // One texel of padding keeps the map's edge texels outside the moved material.
+    return box;
+}
+
+LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolution) {
+    LocalBox box = materialBounds(params);
     const glm::dvec3 texel = (box.hi - box.lo) / glm::dvec3(resolution);
     box.lo -= texel;
     box.hi += texel;

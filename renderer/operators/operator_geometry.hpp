@@ -18,7 +18,11 @@ struct LocalBox {
 };
 
 /// V_T united with the bounds of T_F over V_T (sampled densely on the box and
-/// inside it), padded by one texel of `resolution`.
+/// inside it): where the operator's material can be.
+LocalBox materialBounds(const shader::OperatorParams& params);
+
+/// materialBounds padded by one texel of `resolution`: the domain of the baked
+/// map, whose edge texels then lie outside the moved material.
 LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolution);
 
 /// An oriented box in the world: the local box under an affine map.

@@ -114,13 +114,13 @@ void pliers(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
 
 /// dilator (a volumetric magic lens):
 ///  * radius         number, mm (in units of the smallest half edge), inner region
-///                   magnified uniformly, in (0, 1e5), default a quarter of the smallest edge
+///                   magnified uniformly, in (0, 1e5), default a fifth of the smallest edge
 ///  * magnification  number, in [0.1, 10], default 2; radius * magnification must stay
 ///                   inside the box
 ///  * shape          "sphere" or "cylinder" (about local z), default "sphere"
 void dilator(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
     const double hMin = std::min({h.x, h.y, h.z});
-    const double radius = r.number("radius", 0.5 * hMin, Range::open(0.0, 1e5)) / hMin;
+    const double radius = r.number("radius", 0.4 * hMin, Range::open(0.0, 1e5)) / hMin;
     const double m = r.number("magnification", 2.0, Range::closed(0.1, 10.0));
     const std::string shape = r.string("shape", "sphere", {"sphere", "cylinder"});
     if (radius * std::max(m, 1.0) >= 0.95)

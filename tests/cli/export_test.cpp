@@ -1,0 +1,96 @@
+// `cutaway export`: the deformed volume resampled for other tools.
+#include "cli_util.hpp"
+#include "operators/deformed_volume.hpp"
+#include "scene/scene.hpp"
+#include "volume/phantom.hpp"
+
+#include <filesystem>
+#include <gtest/gtest.h>
+
+namespace cutaway::test {
+namespace {
+
+Scene withOperators(const std::string& operators) {
+    return parseScene(nlohmann::json::parse(R"({"version": 1, "volume": {"phantom": "head"},
+        "operators": )" + operators + "}"),
+                      "/nonexistent", "export test");
+}
+
+} // namespace
+
+TEST(DeformedVolume, WithoutOperatorsItIsTheVolume) {
+    const Volume v = makePhantom("head", {24, 20, 16}, {1.0, 1.5, 2.0}).values;
+    const Volume out = operators::resampleDeformed(v, {}, -1.0f);
+    ASSERT_EQ(out.dims, v.dims);
+    EXPECT_EQ(out.type, VoxelType::F32);
+    EXPECT_EQ(out.spacing, v.spacing);
+    for (std::size_t i = 0; i < v.voxelCount(); ++i)
+        ASSERT_NEAR(out.value(i), v.value(i), 1e-3) << i;
+}
+
+TEST(DeformedVolume, RetractorOpeningIsEmptyAndTheRestUntouched) {
+    const Volume v = makePhantom("head", {48, 48, 48}).values;
+    // Incision along y at x = 0 through the top 20 mm of the head.
+    const Scene s = withOperators(R"([{ "type": "retractor",
+        "placement": { "translate": [0, 0, 14], "scale": [30, 40, 20] },
+        "params": { "length": 40, "depth": 20, "opening": 12 } }])");
+    const Volume out = operators::resampleDeformed(v, s.operators, -1.0f);
+    ASSERT_EQ(out.dims, v.dims); // a retractor's box keeps its faces
+    // Voxels x = 23, 24 (world x = -0.5, +0.5 mm) at y = 24 (y = +0.5 mm): the
+    // column along the incision, in its upper half (world z 12 to 20 mm),
+    // where the opening is wider than a voxel (it narrows to nothing at the
+    // incision's bottom, z = 4 mm).
+    int opened = 0, tissueBefore = 0;
+    for (int z = 36; z < 44; ++z) {
+        for (int x : {23, 24}) {
+            if (v.value(x, 24, z) > 40.0) ++tissueBefore;
+            if (out.value(x, 24, z) == -1.0) ++opened;
+        }
+    }
+    EXPECT_GT(tissueBefore, 8) << "control: the column holds tissue";
+    EXPECT_GE(opened, tissueBefore) << "the opening must be empty";
+    // Outside the operator's box nothing moves.
+    for (int z = 0; z < 20; ++z)
+        for (int x = 0; x < 48; x += 5)
+            EXPECT_NEAR(out.value(x, 24, z), v.value(x, 24, z), 1e-3);
+}
+
+TEST(DeformedVolume, ALiftedFlapGrowsTheGrid) {
+    const Volume v = makePhantom("orange", {40, 40, 40}).values;
+    // A peeler whose box reaches the top of the volume: the flap rises above it.
+    const Scene s = withOperators(R"([{ "type": "peeler",
+        "placement": { "translate": [0, 0, 12], "scale": [36, 30, 16] },
+        "params": { "hinge": -6, "thickness": 5, "radius": 3, "angle": 160 } }])");
+    const Volume out = operators::resampleDeformed(v, s.operators, 0.0f);
+    EXPECT_GT(out.dims.z, v.dims.z);
+    EXPECT_EQ(out.origin.z, v.origin.z) << "the grid grows upward only";
+    double above = 0.0;
+    for (int z = v.dims.z; z < out.dims.z; ++z)
+        for (int y = 0; y < out.dims.y; ++y)
+            for (int x = 0; x < out.dims.x; ++x)
+                above = std::max(above, out.value(x, y, z));
+    EXPECT_GT(above, 100.0) << "the flap's rind lies above the original box";
+}
+
+TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
+    const auto scene = write("s.json", R"({ "version": 1,
+        "volume": { "phantom": "head", "size": [24, 24, 24] },
+        "operators": [ { "type": "dilator", "placement": { "scale": [20, 20, 20] },
+                         "params": { "radius": 3, "magnification": 2 } } ] })");
+    CommandResult r = runCutaway("export " + scene.string() + " -o " + (m_dir / "d.nrrd").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const Volume out = readVolume(m_dir / "d.nrrd");
+    EXPECT_EQ(out.dims, glm::ivec3(24));
+    EXPECT_EQ(out.type, VoxelType::F32);
+    EXPECT_EQ(runCutaway("export " + scene.string() + " -o " + (m_dir / "d.png").string()).code, 2);
+    const auto overlap = write("o.json", R"({ "version": 1, "volume": { "phantom": "head" },
+        "operators": [ { "type": "dilator", "placement": { "scale": [20, 20, 20] } },
+                       { "type": "pliers", "placement": { "translate": [5, 0, 0], "scale": [20, 20, 20] } } ] })");
+    CommandResult o =
+        runCutaway("export " + overlap.string() + " -o " + (m_dir / "o.nrrd").string());
+    EXPECT_EQ(o.code, 2) << o.output;
+    EXPECT_NE(o.output.find("overlap"), std::string::npos) << o.output;
+    EXPECT_FALSE(std::filesystem::exists(m_dir / "o.nrrd"));
+}
+
+} // namespace cutaway::test
