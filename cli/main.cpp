@@ -115,11 +115,16 @@ int runExport(const ExportArgs& args) {
     const int frame = args.frame >= 0 ? args.frame : base.animation.firstFrame;
     const cutaway::Scene scene = cutaway::sceneAtFrame(base, frame);
     const cutaway::Volume volume = cutaway::job::loadSceneVolume(scene);
-    cutaway::operators::checkNoOverlap(scene.operators);
     // Empty voxels (cuts, openings) take the smallest value: air in CT, background in MRI.
     const float empty = static_cast<float>(cutaway::valueRange(volume).min);
-    const cutaway::Volume deformed =
-        cutaway::operators::resampleDeformed(volume, scene.operators, empty);
+    const auto placed = cutaway::operators::centred(volume);
+    cutaway::Volume deformed;
+    if (scene.render.composition == cutaway::Composition::Sequential) {
+        deformed = cutaway::operators::resampleSequentially(placed, scene.operators, empty).volume;
+    } else {
+        cutaway::operators::checkNoOverlap(scene.operators);
+        deformed = cutaway::operators::resampleDeformed(placed, scene.operators, empty).volume;
+    }
     cutaway::writeNrrd(out, deformed, !args.raw);
     if (isatty(STDERR_FILENO))
         std::fprintf(stderr, "wrote %s: frame %d, %d x %d x %d float32 voxels\n",

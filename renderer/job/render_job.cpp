@@ -30,6 +30,42 @@ bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {
     return {range.min, range.min + 1.0};
 }
 
+namespace {
+
+bool sequential(const Scene& scene) {
+    return scene.render.composition == Composition::Sequential && scene.operators.size() > 1;
+}
+
+} // namespace
+
+FrameVolume frameVolume(const Scene& scene) {
+    Volume scan = loadSceneVolume(scene);
+    const bake::ValueWindow window = sceneWindow(scene, scan);
+    operators::PlacedVolume placed = operators::centred(std::move(scan));
+    if (sequential(scene)) {
+        const std::vector<OperatorSpec> baked(scene.operators.begin(), scene.operators.end() - 1);
+        // Empty space takes the bottom of the window: transparent under any
+        // transfer function that is transparent for air.
+        placed = operators::resampleSequentially(placed, baked, static_cast<float>(window.lo));
+    }
+    return FrameVolume{std::move(placed), window};
+}
+
+std::string frameVolumeKey(const Scene& scene) {
+    std::string key = scene.document.value("volume", nlohmann::json()).dump();
+    if (sequential(scene)) {
+        const nlohmann::json ops = scene.document.value("operators", nlohmann::json::array());
+        for (std::size_t i = 0; i + 1 < ops.size(); ++i)
+            key += ops[i].dump();
+    }
+    return key;
+}
+
+std::vector<OperatorSpec> liveOperators(const Scene& scene) {
+    if (!sequential(scene)) return scene.operators;
+    return {scene.operators.back()};
+}
+
 std::string expandPattern(const std::string& pattern, int frame) {
     static const std::regex hashes("#+");
     static const std::regex printfStyle("%(0?)([0-9]*)d");
@@ -63,20 +99,17 @@ void applyOverrides(Scene& scene, const RenderOverrides& overrides) {
     if (overrides.png) scene.output.png = true;
 }
 
-namespace {
-
-Image renderPrepared(const gpu::Context& ctx, const Scene& scene, const Volume& volume) {
-    bake::GradientBaker baker(ctx);
-    render::GpuVolume gpuVolume =
-        render::prepareVolume(ctx, baker, volume, sceneWindow(scene, volume));
-    render::SliceRenderer renderer(ctx);
-    return renderer.render(scene, gpuVolume);
-}
-
-} // namespace
+namespace {} // namespace
 
 Image renderImage(const gpu::Context& ctx, const Scene& scene) {
-    return renderPrepared(ctx, scene, loadSceneVolume(scene));
+    const FrameVolume fv = frameVolume(scene);
+    bake::GradientBaker baker(ctx);
+    render::GpuVolume gpuVolume =
+        render::prepareVolume(ctx, baker, fv.placed.volume, fv.window, fv.placed.worldLo);
+    render::SliceRenderer renderer(ctx);
+    Scene live = scene;
+    live.operators = liveOperators(scene);
+    return renderer.render(live, gpuVolume);
 }
 
 } // namespace cutaway::job

@@ -5,6 +5,7 @@
 #include "bake/volume_upload.hpp"
 #include "gpu/context.hpp"
 #include "io/image.hpp"
+#include "operators/deformed_volume.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
@@ -23,6 +24,24 @@ Volume loadSceneVolume(const Scene& scene);
 /// The value window: the scene's, else the volume's value range (a flat
 /// volume gets a window of width 1 so normalization stays defined).
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
+
+/// The volume a frame renders and its value window: the scan itself, or under
+/// sequential composition the scan deformed by every operator but the last
+/// (resampled on the CPU). The window is always the scan's.
+struct FrameVolume {
+    operators::PlacedVolume placed;
+    bake::ValueWindow window;
+};
+FrameVolume frameVolume(const Scene& scene);
+
+/// Identifies the volume frameVolume would make, so a sequence uploads it
+/// again only when it changes: the /volume section, plus under sequential
+/// composition every operator but the last.
+std::string frameVolumeKey(const Scene& scene);
+
+/// The operators rendered live through their baked maps: all of them, or
+/// under sequential composition only the last.
+std::vector<OperatorSpec> liveOperators(const Scene& scene);
 
 /// Expands "####" (any run of #) or "%0Nd" / "%d" in `pattern` with `frame`.
 /// A pattern without a placeholder is used as is.

@@ -37,17 +37,19 @@ public:
     explicit FrameRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx), m_renderer(ctx) {}
 
     Image render(const Scene& scene) {
-        // A volume is identified by its /volume section: same section, same texture.
-        const std::string key = scene.document.value("volume", nlohmann::json()).dump();
+        // Same key, same volume: its texture and gradients are kept.
+        const std::string key = frameVolumeKey(scene);
         if (!m_volume || key != m_volumeKey) {
             m_volume.reset(); // free the old textures before making new ones
-            const Volume volume = loadSceneVolume(scene);
-            m_volume = std::make_unique<render::GpuVolume>(
-                render::prepareVolume(m_ctx, m_baker, volume, sceneWindow(scene, volume)));
+            const FrameVolume fv = frameVolume(scene);
+            m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
+                m_ctx, m_baker, fv.placed.volume, fv.window, fv.placed.worldLo));
             m_volumeKey = key;
             ++m_uploads;
         }
-        return m_renderer.render(scene, *m_volume);
+        Scene live = scene;
+        live.operators = liveOperators(scene);
+        return m_renderer.render(live, *m_volume);
     }
 
     int uploads() const { return m_uploads; }

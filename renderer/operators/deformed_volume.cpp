@@ -13,9 +13,9 @@ namespace {
 // Trilinear interpolation of physical values at a world point (mm, origin at
 // the volume's centre), clamped at the edge texels like the GPU sampler.
 // Returns false outside the volume's box.
-bool sample(const Volume& v, glm::dvec3 world, double& value) {
-    const glm::dvec3 extent = v.extent();
-    const glm::dvec3 t = (world + 0.5 * extent) / extent;
+bool sample(const PlacedVolume& in, glm::dvec3 world, double& value) {
+    const Volume& v = in.volume;
+    const glm::dvec3 t = (world - in.worldLo) / v.extent();
     if (glm::any(glm::lessThan(t, glm::dvec3(0.0))) ||
         glm::any(glm::greaterThan(t, glm::dvec3(1.0))))
         return false;
@@ -34,15 +34,29 @@ bool sample(const Volume& v, glm::dvec3 world, double& value) {
 
 } // namespace
 
-Volume resampleDeformed(const Volume& volume, const std::vector<OperatorSpec>& operators,
-                        float emptyValue) {
+PlacedVolume centred(Volume volume) {
+    const glm::dvec3 lo = -0.5 * volume.extent();
+    return PlacedVolume{std::move(volume), lo};
+}
+
+PlacedVolume resampleSequentially(const PlacedVolume& in,
+                                  const std::vector<OperatorSpec>& operators, float emptyValue) {
+    PlacedVolume current = in;
+    for (const OperatorSpec& op : operators)
+        current = resampleDeformed(current, {op}, emptyValue);
+    return current;
+}
+
+PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
+                              float emptyValue) {
+    const Volume& volume = in.volume;
     struct Placed {
         const OperatorSpec* spec;
         WorldBox box;
         glm::dmat4 worldToLocal;
     };
     std::vector<Placed> placed;
-    glm::dvec3 lo = -0.5 * volume.extent(), hi = 0.5 * volume.extent();
+    glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
     const glm::dvec3 volumeLo = lo;
     for (const OperatorSpec& op : operators) {
         const WorldBox box{op.localToWorld, materialBounds(op.params)};
@@ -77,9 +91,9 @@ Volume resampleDeformed(const Volume& volume, const std::vector<OperatorSpec>& o
                 }
                 double value = 0.0;
                 data[out.index(x, y, z)] =
-                    !empty && sample(volume, p, value) ? static_cast<float>(value) : emptyValue;
+                    !empty && sample(in, p, value) ? static_cast<float>(value) : emptyValue;
             }
-    return out;
+    return PlacedVolume{std::move(out), lo};
 }
 
 } // namespace cutaway::operators

@@ -15,13 +15,14 @@ double GpuVolume::smallestSpacing() const {
 }
 
 GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,
-                        const Volume& volume, bake::ValueWindow window) {
+                        const Volume& volume, bake::ValueWindow window,
+                        std::optional<glm::dvec3> worldLo) {
     GpuVolume gv;
     gv.dims = volume.dims;
     gv.spacing = volume.spacing;
     gv.window = window;
-    const glm::dvec3 half = 0.5 * volume.extent();
-    gv.box = Box{-half, half};
+    const glm::dvec3 lo = worldLo.value_or(-0.5 * volume.extent());
+    gv.box = Box{lo, lo + volume.extent()};
     gv.values = bake::uploadVolume(ctx, volume, window);
     gv.gradients = baker.bake(gv.values, volume.spacing);
     return gv;

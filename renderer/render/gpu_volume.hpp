@@ -9,6 +9,7 @@
 #include "volume/volume.hpp"
 
 #include <glm/glm.hpp>
+#include <optional>
 
 namespace cutaway::render {
 
@@ -25,8 +26,10 @@ struct GpuVolume {
     double smallestSpacing() const;
 };
 
-/// Uploads `volume` normalized over `window` and bakes its gradients.
+/// Uploads `volume` normalized over `window` and bakes its gradients. Its box
+/// is centred on the world's origin unless `worldLo` places its low corner.
 GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,
-                        const Volume& volume, bake::ValueWindow window);
+                        const Volume& volume, bake::ValueWindow window,
+                        std::optional<glm::dvec3> worldLo = std::nullopt);
 
 } // namespace cutaway::render

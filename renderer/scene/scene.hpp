@@ -92,6 +92,14 @@ struct Shading {
 ///   "post":          the transfer function at the slab's front sample only
 enum class Classification { Preintegrated, Post };
 
+/// /render/operator_composition: how several operators combine.
+///   "separate":   each acts on the original volume in its own box; deformed
+///                 boxes must not overlap (section 5.1; default)
+///   "sequential": in array order, each acts on the volume the previous ones
+///                 left (the intermediate volume is resampled and uploaded),
+///                 so boxes may overlap; costs a CPU resample when they change
+enum class Composition { Separate, Sequential };
+
 /// /render
 struct RenderSettings {
     int width = 512;           ///< /render/size[0], [1, 16384]
@@ -99,6 +107,7 @@ struct RenderSettings {
     double sliceSpacing = 1.0; ///< /render/slice_spacing: in voxels (smallest spacing), [0.05, 16]
     glm::vec4 background{0, 0, 0, 1}; ///< /render/background: RGB(A) or "transparent" (0,0,0,0)
     Classification classification = Classification::Preintegrated;
+    Composition composition = Composition::Separate;
     Shading shading;
 };
 

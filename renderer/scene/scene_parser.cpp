@@ -30,6 +30,8 @@ namespace scene_detail {
 ///                   How the slab between two slices is classified: from a table of
 ///                   its front and back values (no rings on thin features), or from
 ///                   the transfer function at its front sample only.
+///  * operator_composition "separate" or "sequential", default "separate": see
+///                   Composition in scene.hpp
 ///  * shading        object, default {}: Blinn-Phong material of every sample
 ///    * enabled      boolean, default true: false shows the transfer function's colours unlit
 ///    * diffuse      number, in [0, 1], default 0.8
@@ -63,6 +65,11 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
         {"preintegrated", "post"});
     render.classification =
         classification == "post" ? Classification::Post : Classification::Preintegrated;
+
+    const std::string composition =
+        reader.string("operator_composition", "separate", {"separate", "sequential"});
+    render.composition =
+        composition == "sequential" ? Composition::Sequential : Composition::Separate;
 
     reader.object("shading", [&](JsonReader& shading) {
         Shading& s = render.shading;

@@ -20,7 +20,7 @@ Scene withOperators(const std::string& operators) {
 
 TEST(DeformedVolume, WithoutOperatorsItIsTheVolume) {
     const Volume v = makePhantom("head", {24, 20, 16}, {1.0, 1.5, 2.0}).values;
-    const Volume out = operators::resampleDeformed(v, {}, -1.0f);
+    const Volume out = operators::resampleDeformed(operators::centred(v), {}, -1.0f).volume;
     ASSERT_EQ(out.dims, v.dims);
     EXPECT_EQ(out.type, VoxelType::F32);
     EXPECT_EQ(out.spacing, v.spacing);
@@ -34,7 +34,8 @@ TEST(DeformedVolume, RetractorOpeningIsEmptyAndTheRestUntouched) {
     const Scene s = withOperators(R"([{ "type": "retractor",
         "placement": { "translate": [0, 0, 14], "scale": [30, 40, 20] },
         "params": { "length": 40, "depth": 20, "opening": 12 } }])");
-    const Volume out = operators::resampleDeformed(v, s.operators, -1.0f);
+    const Volume out =
+        operators::resampleDeformed(operators::centred(v), s.operators, -1.0f).volume;
     ASSERT_EQ(out.dims, v.dims); // a retractor's box keeps its faces
     // Voxels x = 23, 24 (world x = -0.5, +0.5 mm) at y = 24 (y = +0.5 mm): the
     // column along the incision, in its upper half (world z 12 to 20 mm),
@@ -61,7 +62,7 @@ TEST(DeformedVolume, ALiftedFlapGrowsTheGrid) {
     const Scene s = withOperators(R"([{ "type": "peeler",
         "placement": { "translate": [0, 0, 12], "scale": [36, 30, 16] },
         "params": { "hinge": -6, "thickness": 5, "radius": 3, "angle": 160 } }])");
-    const Volume out = operators::resampleDeformed(v, s.operators, 0.0f);
+    const Volume out = operators::resampleDeformed(operators::centred(v), s.operators, 0.0f).volume;
     EXPECT_GT(out.dims.z, v.dims.z);
     EXPECT_EQ(out.origin.z, v.origin.z) << "the grid grows upward only";
     double above = 0.0;
@@ -91,6 +92,40 @@ TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
     EXPECT_EQ(o.code, 2) << o.output;
     EXPECT_NE(o.output.find("overlap"), std::string::npos) << o.output;
     EXPECT_FALSE(std::filesystem::exists(m_dir / "o.nrrd"));
+}
+
+} // namespace cutaway::test
+
+namespace cutaway::test {
+
+// Sequential composition: an identity operator applied after a retractor, in
+// an overlapping box, leaves the retractor's result unchanged.
+TEST(DeformedVolume, SequentialCompositionAppliesOperatorsInOrder) {
+    const Volume v = makePhantom("head", {40, 40, 40}).values;
+    const Scene s = withOperators(R"([
+        { "type": "retractor", "placement": { "translate": [0, 0, 10], "scale": [26, 34, 20] },
+          "params": { "opening": 10 } },
+        { "type": "dilator", "placement": { "translate": [4, 0, 8], "scale": [20, 20, 20] },
+          "params": { "magnification": 1 } }])");
+    const auto once = operators::resampleDeformed(operators::centred(v), {s.operators[0]}, -1.0f);
+    const auto both = operators::resampleSequentially(operators::centred(v), s.operators, -1.0f);
+    ASSERT_EQ(both.volume.dims, once.volume.dims);
+    EXPECT_EQ(both.worldLo, once.worldLo);
+    for (std::size_t i = 0; i < once.volume.voxelCount(); ++i)
+        ASSERT_NEAR(both.volume.value(i), once.volume.value(i), 1e-3) << i;
+
+    // A real second operator changes what the first left: pliers pull at it.
+    const Scene pull = withOperators(R"([
+        { "type": "retractor", "placement": { "translate": [0, 0, 10], "scale": [26, 34, 20] },
+          "params": { "opening": 10 } },
+        { "type": "pliers", "placement": { "translate": [4, 0, 8], "scale": [20, 20, 20] },
+          "params": { "radius": 8, "displacement": [0, 0, 3] } }])");
+    const auto pulled =
+        operators::resampleSequentially(operators::centred(v), pull.operators, -1.0f);
+    double changed = 0.0;
+    for (std::size_t i = 0; i < once.volume.voxelCount(); ++i)
+        changed = std::max(changed, std::abs(pulled.volume.value(i) - once.volume.value(i)));
+    EXPECT_GT(changed, 10.0);
 }
 
 } // namespace cutaway::test
