@@ -1,9 +1,9 @@
 #include "volume/gzip.hpp"
 
+#include "core/error.hpp"
+
 #include <algorithm>
 #include <climits>
-
-#include "core/error.hpp"
 
 namespace cutaway::detail {
 
@@ -29,11 +29,14 @@ GzipReader::GzipReader(std::istream& in, std::string context)
     }
 }
 
-GzipReader::~GzipReader() { inflateEnd(&m_stream); }
+GzipReader::~GzipReader() {
+    inflateEnd(&m_stream);
+}
 
 bool GzipReader::refill() {
     if (m_inputEnded) return false;
-    m_in.read(reinterpret_cast<char*>(m_input.data()), static_cast<std::streamsize>(m_input.size()));
+    m_in.read(reinterpret_cast<char*>(m_input.data()),
+              static_cast<std::streamsize>(m_input.size()));
     const auto got = static_cast<std::size_t>(m_in.gcount());
     if (got < m_input.size()) m_inputEnded = true;
     m_stream.next_in = m_input.data();
@@ -84,7 +87,8 @@ std::uint64_t GzipReader::skip(std::uint64_t size) {
     std::vector<std::byte> scratch(std::min<std::uint64_t>(size, std::uint64_t{1} << 20));
     std::uint64_t done = 0;
     while (done < size) {
-        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(size - done, scratch.size()));
+        const auto want =
+            static_cast<std::size_t>(std::min<std::uint64_t>(size - done, scratch.size()));
         const std::size_t got = read(scratch.data(), want);
         done += got;
         if (got < want) break;
@@ -136,7 +140,8 @@ void writeGzip(std::ostream& out, const std::byte* data, std::size_t size,
                 throw RuntimeError(context + ": gzip compression failed");
             }
             const std::size_t made = buffer.size() - stream.avail_out;
-            out.write(reinterpret_cast<const char*>(buffer.data()), static_cast<std::streamsize>(made));
+            out.write(reinterpret_cast<const char*>(buffer.data()),
+                      static_cast<std::streamsize>(made));
         } while (stream.avail_out == 0);
     } while (consumed < size);
     deflateEnd(&stream);

@@ -11,7 +11,6 @@
 #include <ostream>
 #include <string>
 #include <vector>
-
 #include <zlib.h>
 
 namespace cutaway::detail {

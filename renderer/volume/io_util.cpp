@@ -1,18 +1,20 @@
 #include "volume/io_util.hpp"
 
+#include "core/error.hpp"
+
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <system_error>
 
-#include "core/error.hpp"
-
 namespace cutaway::detail {
 
 namespace {
 
-std::string prefix(std::string_view context) { return std::string(context) + ": "; }
+std::string prefix(std::string_view context) {
+    return std::string(context) + ": ";
+}
 
 } // namespace
 
@@ -117,14 +119,17 @@ std::string formatDouble(double value) {
 
 std::string toLower(std::string_view text) {
     std::string out(text);
-    for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (char& c : out)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return out;
 }
 
 std::string_view trim(std::string_view text) {
     const auto isSpace = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
-    while (!text.empty() && isSpace(text.front())) text.remove_prefix(1);
-    while (!text.empty() && isSpace(text.back())) text.remove_suffix(1);
+    while (!text.empty() && isSpace(text.front()))
+        text.remove_prefix(1);
+    while (!text.empty() && isSpace(text.back()))
+        text.remove_suffix(1);
     return text;
 }
 

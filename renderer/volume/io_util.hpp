@@ -2,14 +2,14 @@
 // Private helpers shared by the volume readers and the writer: limits on what a
 // header may declare, file checks, and number parsing. Every error names the
 // file (`context`) it is about.
+#include "volume/volume.hpp"
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
-
-#include "volume/volume.hpp"
 
 namespace cutaway::detail {
 

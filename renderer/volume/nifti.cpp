@@ -1,13 +1,13 @@
 // NIfTI-1 single-file reader (.nii, .nii.gz; magic "n+1"), either byte order.
 // https://nifti.nimh.nih.gov/nifti-1/documentation/nifti1fields
-#include <cmath>
-#include <cstring>
-
 #include "core/error.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/gzip.hpp"
 #include "volume/io_util.hpp"
 #include "volume/volume.hpp"
+
+#include <cmath>
+#include <cstring>
 
 namespace cutaway {
 
@@ -43,28 +43,56 @@ private:
 
 VoxelType niftiType(std::int16_t code, const std::string& ctx) {
     switch (code) {
-    case 2: return VoxelType::U8;
-    case 4: return VoxelType::I16;
-    case 8: return VoxelType::I32;
-    case 16: return VoxelType::F32;
-    case 64: return VoxelType::F64;
-    case 256: return VoxelType::I8;
-    case 512: return VoxelType::U16;
-    case 768: return VoxelType::U32;
-    default: break;
+    case 2:
+        return VoxelType::U8;
+    case 4:
+        return VoxelType::I16;
+    case 8:
+        return VoxelType::I32;
+    case 16:
+        return VoxelType::F32;
+    case 64:
+        return VoxelType::F64;
+    case 256:
+        return VoxelType::I8;
+    case 512:
+        return VoxelType::U16;
+    case 768:
+        return VoxelType::U32;
+    default:
+        break;
     }
     const char* name = "unknown";
     switch (code) {
-    case 1: name = "binary"; break;
-    case 32: name = "complex64"; break;
-    case 128: name = "RGB24"; break;
-    case 1024: name = "int64"; break;
-    case 1280: name = "uint64"; break;
-    case 1536: name = "float128"; break;
-    case 1792: name = "complex128"; break;
-    case 2048: name = "complex256"; break;
-    case 2304: name = "RGBA32"; break;
-    default: break;
+    case 1:
+        name = "binary";
+        break;
+    case 32:
+        name = "complex64";
+        break;
+    case 128:
+        name = "RGB24";
+        break;
+    case 1024:
+        name = "int64";
+        break;
+    case 1280:
+        name = "uint64";
+        break;
+    case 1536:
+        name = "float128";
+        break;
+    case 1792:
+        name = "complex128";
+        break;
+    case 2048:
+        name = "complex256";
+        break;
+    case 2304:
+        name = "RGBA32";
+        break;
+    default:
+        break;
     }
     throw InputError(ctx + ": unsupported NIfTI datatype " + std::to_string(code) + " (" + name +
                      "); cutaway reads uint8, int8, uint16, int16, uint32, int32, float32 and "
@@ -138,7 +166,8 @@ Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
     for (int a = 0; a < 3; ++a) {
         // pixdim may be negative (a flip: only the magnitude is spacing) or 0
         // (written by many tools when unknown: taken as 1 mm).
-        double spacing = std::fabs(static_cast<double>(h.f32(80 + 4 * static_cast<std::size_t>(a))));
+        double spacing =
+            std::fabs(static_cast<double>(h.f32(80 + 4 * static_cast<std::size_t>(a))));
         if (spacing == 0.0) spacing = 1.0;
         detail::checkSpacing(spacing, a, ctx);
         v.spacing[a] = spacing;
@@ -193,8 +222,8 @@ Volume readNifti(const std::filesystem::path& path) {
         const std::uint64_t gap = p.offset - kHeaderSize;
         if (reader.skip(gap) < gap) {
             throw InputError(ctx + ": vox_offset " + std::to_string(p.offset) +
-                             " is beyond the end of the file (" + std::to_string(reader.position()) +
-                             " bytes after decompression)");
+                             " is beyond the end of the file (" +
+                             std::to_string(reader.position()) + " bytes after decompression)");
         }
         p.volume.data = detail::readUpTo(reader, p.bytes);
         if (p.volume.data.size() < p.bytes) {

@@ -1,107 +1,29 @@
 // NRRD reader (http://teem.sourceforge.net/nrrd/format.html), NRRD0001..NRRD0005:
 // attached (.nrrd) and detached (.nhdr + data file) headers, raw and gzip
 // encodings, either byte order, 3D grids (or 4D with a first axis of size 1).
-#include <cctype>
+#include "core/error.hpp"
+#include "volume/byte_order.hpp"
+#include "volume/gzip.hpp"
+#include "volume/io_util.hpp"
+#include "volume/nrrd_header.hpp"
+#include "volume/volume.hpp"
+
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
 
-#include "core/error.hpp"
-#include "volume/byte_order.hpp"
-#include "volume/gzip.hpp"
-#include "volume/io_util.hpp"
-#include "volume/volume.hpp"
-
 namespace cutaway {
 
 namespace {
 
+using detail::parseNrrdType;
+using detail::parseNrrdVectors;
+using detail::readNrrdHeader;
+using detail::readNrrdLine;
+using detail::splitWords;
 using detail::toLower;
 using detail::trim;
-
-/// A header longer than this is not a header (a binary file without the blank line).
-constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
-
-struct NrrdFields {
-    std::optional<std::string> type, dimension, sizes, endian, encoding, spacings, directions,
-        origin, dataFile, byteSkip, lineSkip, slope, inter;
-};
-
-std::vector<std::string_view> splitWords(std::string_view text) {
-    std::vector<std::string_view> words;
-    text = trim(text);
-    while (!text.empty()) {
-        std::size_t end = 0;
-        while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end]))) ++end;
-        words.push_back(text.substr(0, end));
-        text = trim(text.substr(end));
-    }
-    return words;
-}
-
-/// Reads one line (without "\n" or "\r\n"); false at the end of the stream.
-bool readLine(std::istream& in, std::string& line, std::size_t& budget, const std::string& ctx) {
-    line.clear();
-    std::streambuf* buffer = in.rdbuf();
-    bool any = false;
-    for (;;) {
-        const int c = buffer->sbumpc();
-        if (c == std::char_traits<char>::eof()) break;
-        any = true;
-        if (budget-- == 0) {
-            throw InputError(ctx + ": header longer than 1 MiB (is the blank line that ends it "
-                                   "missing?)");
-        }
-        if (c == '\n') break;
-        line.push_back(static_cast<char>(c));
-    }
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    return any;
-}
-
-VoxelType parseNrrdType(std::string_view text, const std::string& ctx) {
-    // Collapse whitespace so "unsigned   short" is "unsigned short".
-    std::string name;
-    for (std::string_view word : splitWords(text)) {
-        if (!name.empty()) name += ' ';
-        name += toLower(word);
-    }
-    struct Spelling {
-        const char* name;
-        VoxelType type;
-    };
-    static constexpr Spelling kSpellings[] = {
-        {"signed char", VoxelType::I8},     {"int8", VoxelType::I8},
-        {"int8_t", VoxelType::I8},          {"uchar", VoxelType::U8},
-        {"unsigned char", VoxelType::U8},   {"uint8", VoxelType::U8},
-        {"uint8_t", VoxelType::U8},         {"short", VoxelType::I16},
-        {"short int", VoxelType::I16},      {"signed short", VoxelType::I16},
-        {"signed short int", VoxelType::I16}, {"int16", VoxelType::I16},
-        {"int16_t", VoxelType::I16},        {"ushort", VoxelType::U16},
-        {"unsigned short", VoxelType::U16}, {"unsigned short int", VoxelType::U16},
-        {"uint16", VoxelType::U16},         {"uint16_t", VoxelType::U16},
-        {"int", VoxelType::I32},            {"signed int", VoxelType::I32},
-        {"int32", VoxelType::I32},          {"int32_t", VoxelType::I32},
-        {"uint", VoxelType::U32},           {"unsigned int", VoxelType::U32},
-        {"uint32", VoxelType::U32},         {"uint32_t", VoxelType::U32},
-        {"float", VoxelType::F32},          {"double", VoxelType::F64},
-    };
-    for (const Spelling& s : kSpellings) {
-        if (name == s.name) return s.type;
-    }
-    static constexpr const char* kKnownUnsupported[] = {
-        "longlong",  "long long", "long long int", "signed long long", "signed long long int",
-        "int64",     "int64_t",   "ulonglong",     "unsigned long long", "unsigned long long int",
-        "uint64",    "uint64_t",  "block"};
-    for (const char* s : kKnownUnsupported) {
-        if (name == s) {
-            throw InputError(ctx + ": unsupported type '" + name +
-                             "' (cutaway reads 8, 16 and 32-bit integers, float and double)");
-        }
-    }
-    throw InputError(ctx + ": unknown type '" + std::string(text) + "'");
-}
 
 std::int64_t parseIntField(const std::string& text, const char* field, const std::string& ctx) {
     std::int64_t value = 0;
@@ -109,92 +31,6 @@ std::int64_t parseIntField(const std::string& text, const char* field, const std
         throw InputError(ctx + ": field '" + field + "' is not an integer: '" + text + "'");
     }
     return value;
-}
-
-/// Parses "(a,b,c)" vectors and "none" entries of `space directions` / `space origin`.
-std::vector<std::optional<std::vector<double>>> parseVectors(std::string_view text,
-                                                             const char* field,
-                                                             const std::string& ctx) {
-    std::vector<std::optional<std::vector<double>>> out;
-    const auto bad = [&]() {
-        return InputError(ctx + ": malformed '" + field + "': '" + std::string(trim(text)) +
-                          "' (expected vectors like (1,0,0) or none)");
-    };
-    std::string_view rest = trim(text);
-    while (!rest.empty()) {
-        if (rest.size() >= 4 && toLower(rest.substr(0, 4)) == "none") {
-            out.emplace_back(std::nullopt);
-            rest = trim(rest.substr(4));
-            continue;
-        }
-        if (rest.front() != '(') throw bad();
-        const std::size_t close = rest.find(')');
-        if (close == std::string_view::npos) throw bad();
-        std::vector<double> vec;
-        std::string_view inner = rest.substr(1, close - 1);
-        while (true) {
-            const std::size_t comma = inner.find(',');
-            double value = 0.0;
-            if (!detail::parseDouble(trim(inner.substr(0, comma)), value)) throw bad();
-            vec.push_back(value);
-            if (comma == std::string_view::npos) break;
-            inner.remove_prefix(comma + 1);
-        }
-        out.emplace_back(std::move(vec));
-        rest = trim(rest.substr(close + 1));
-    }
-    return out;
-}
-
-NrrdFields readHeader(std::istream& in, const std::string& ctx, bool& endedByBlankLine) {
-    std::size_t budget = kMaxHeaderBytes;
-    std::string line;
-    if (!readLine(in, line, budget, ctx)) throw InputError(ctx + ": empty file, not a NRRD file");
-    const std::string_view magic = trim(line);
-    if (magic.size() != 8 || magic.substr(0, 7) != "NRRD000" || magic[7] < '1' || magic[7] > '5') {
-        throw InputError(ctx + ": not a NRRD file (expected the magic NRRD0001..NRRD0005, found '" +
-                         std::string(magic.substr(0, 16)) + "')");
-    }
-    NrrdFields f;
-    endedByBlankLine = false;
-    int lineNumber = 1;
-    while (readLine(in, line, budget, ctx)) {
-        ++lineNumber;
-        if (trim(line).empty()) {
-            endedByBlankLine = true;
-            break;
-        }
-        if (line.front() == '#') continue;
-        const std::size_t colon = line.find(':');
-        if (colon == std::string::npos) {
-            throw InputError(ctx + ": line " + std::to_string(lineNumber) + ": expected 'field: value', found '" +
-                             line.substr(0, 80) + "'");
-        }
-        if (colon + 1 < line.size() && line[colon + 1] == '=') {
-            // key:=value pairs are free-form; cutaway's writer keeps a NIfTI-style
-            // value scaling in two of them so it survives a round trip.
-            const std::string key(trim(std::string_view(line).substr(0, colon)));
-            const std::string value(trim(std::string_view(line).substr(colon + 2)));
-            if (key == "cutaway_slope") f.slope = value;
-            if (key == "cutaway_inter") f.inter = value;
-            continue;
-        }
-        const std::string name = toLower(trim(std::string_view(line).substr(0, colon)));
-        std::string value(trim(std::string_view(line).substr(colon + 1)));
-        if (name == "type") f.type = value;
-        else if (name == "dimension") f.dimension = value;
-        else if (name == "sizes") f.sizes = value;
-        else if (name == "endian") f.endian = value;
-        else if (name == "encoding") f.encoding = value;
-        else if (name == "spacings") f.spacings = value;
-        else if (name == "space directions") f.directions = value;
-        else if (name == "space origin") f.origin = value;
-        else if (name == "data file" || name == "datafile") f.dataFile = value;
-        else if (name == "byte skip" || name == "byteskip") f.byteSkip = value;
-        else if (name == "line skip" || name == "lineskip") f.lineSkip = value;
-        // content, kinds, space, centerings, labels, units, ...: descriptive only.
-    }
-    return f;
 }
 
 const std::string& required(const std::optional<std::string>& field, const char* name,
@@ -210,10 +46,11 @@ Volume readNrrd(const std::filesystem::path& path) {
     const std::uint64_t headerFileSize = detail::regularFileSize(path);
     std::ifstream in = detail::openBinary(path);
     bool endedByBlankLine = false;
-    const NrrdFields f = readHeader(in, ctx, endedByBlankLine);
+    const detail::NrrdFields f = readNrrdHeader(in, ctx, endedByBlankLine);
 
     const VoxelType type = parseNrrdType(required(f.type, "type", ctx), ctx);
-    const std::int64_t dimension = parseIntField(required(f.dimension, "dimension", ctx), "dimension", ctx);
+    const std::int64_t dimension =
+        parseIntField(required(f.dimension, "dimension", ctx), "dimension", ctx);
     if (dimension != 3 && dimension != 4) {
         throw InputError(ctx + ": dimension " + std::to_string(dimension) +
                          " is not supported (cutaway reads 3D volumes: dimension 3, or 4 with a "
@@ -246,7 +83,7 @@ Volume readNrrd(const std::filesystem::path& path) {
     volume.type = type;
     // Spacing: the length of each space direction, else `spacings`, else 1 mm.
     if (f.directions) {
-        const auto vectors = parseVectors(*f.directions, "space directions", ctx);
+        const auto vectors = parseNrrdVectors(*f.directions, "space directions", ctx);
         if (static_cast<std::int64_t>(vectors.size()) != dimension) {
             throw InputError(ctx + ": 'space directions' has " + std::to_string(vectors.size()) +
                              " entries but dimension is " + std::to_string(dimension));
@@ -255,7 +92,8 @@ Volume readNrrd(const std::filesystem::path& path) {
             const auto& v = vectors[first + static_cast<std::size_t>(a)];
             if (!v) throw InputError(ctx + ": 'space directions' is none for a spatial axis");
             double squared = 0.0;
-            for (double c : *v) squared += c * c;
+            for (double c : *v)
+                squared += c * c;
             volume.spacing[a] = std::sqrt(squared);
             detail::checkSpacing(volume.spacing[a], a, ctx);
         }
@@ -275,7 +113,7 @@ Volume readNrrd(const std::filesystem::path& path) {
         }
     }
     if (f.origin) {
-        const auto vectors = parseVectors(*f.origin, "space origin", ctx);
+        const auto vectors = parseNrrdVectors(*f.origin, "space origin", ctx);
         if (vectors.size() != 1 || !vectors[0]) {
             throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
         }
@@ -299,8 +137,10 @@ Volume readNrrd(const std::filesystem::path& path) {
     bool bigEndian = false; // a missing endian (legal for 8-bit data) means little
     if (f.endian) {
         const std::string endian = toLower(trim(*f.endian));
-        if (endian == "big") bigEndian = true;
-        else if (endian != "little") throw InputError(ctx + ": unknown endian '" + *f.endian + "'");
+        if (endian == "big")
+            bigEndian = true;
+        else if (endian != "little")
+            throw InputError(ctx + ": unknown endian '" + *f.endian + "'");
     }
     const std::string encoding = toLower(trim(required(f.encoding, "encoding", ctx)));
     const bool gzip = encoding == "gzip" || encoding == "gz";
@@ -325,8 +165,8 @@ Volume readNrrd(const std::filesystem::path& path) {
     std::uint64_t dataFileSize = headerFileSize;
     if (f.dataFile) {
         const std::string name(trim(*f.dataFile));
-        if (name.rfind("LIST", 0) == 0 || (name.find('%') != std::string::npos &&
-                                           name.find(' ') != std::string::npos)) {
+        if (name.rfind("LIST", 0) == 0 ||
+            (name.find('%') != std::string::npos && name.find(' ') != std::string::npos)) {
             throw InputError(ctx + ": multi-file 'data file' lists are not supported ('" + name +
                              "'); use a single data file");
         }
@@ -348,7 +188,7 @@ Volume readNrrd(const std::filesystem::path& path) {
     std::size_t unused = std::numeric_limits<std::size_t>::max();
     std::string skipped;
     for (std::int64_t i = 0; i < lineSkip; ++i) {
-        if (!readLine(*data, skipped, unused, dataCtx)) {
+        if (!readNrrdLine(*data, skipped, unused, dataCtx)) {
             throw InputError(dataCtx + ": line skip " + std::to_string(lineSkip) +
                              " goes past the end of the file");
         }
@@ -358,8 +198,10 @@ Volume readNrrd(const std::filesystem::path& path) {
         auto start = static_cast<std::uint64_t>(data->tellg());
         if (byteSkip == -1) {
             // Data at the end of the file, whatever comes before it.
-            if (dataFileSize < bytes) start = dataFileSize + 1;
-            else start = dataFileSize - bytes;
+            if (dataFileSize < bytes)
+                start = dataFileSize + 1;
+            else
+                start = dataFileSize - bytes;
         } else {
             start += static_cast<std::uint64_t>(byteSkip);
         }
@@ -376,7 +218,8 @@ Volume readNrrd(const std::filesystem::path& path) {
     } else {
         detail::GzipReader reader(*data, dataCtx);
         // For compressed data the byte skip counts decompressed bytes.
-        if (reader.skip(static_cast<std::uint64_t>(byteSkip)) < static_cast<std::uint64_t>(byteSkip)) {
+        if (reader.skip(static_cast<std::uint64_t>(byteSkip)) <
+            static_cast<std::uint64_t>(byteSkip)) {
             throw InputError(dataCtx + ": data truncated: byte skip " + std::to_string(byteSkip) +
                              " goes past the end of the decompressed data");
         }

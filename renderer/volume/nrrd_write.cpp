@@ -1,16 +1,16 @@
 // NRRD writer: attached header, little endian, raw or gzip. The file appears
 // atomically: it is written under a temporary name in the target folder and
 // renamed over the target, so a crash never leaves a half-written volume.
-#include <cerrno>
-#include <cstring>
-#include <random>
-#include <sstream>
-
 #include "core/error.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/gzip.hpp"
 #include "volume/io_util.hpp"
 #include "volume/volume.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <random>
+#include <sstream>
 
 namespace cutaway {
 
@@ -19,9 +19,12 @@ namespace {
 std::string nrrdTypeName(VoxelType type) {
     // The NRRD spellings of the canonical names, except the two float types.
     switch (type) {
-    case VoxelType::F32: return "float";
-    case VoxelType::F64: return "double";
-    default: return std::string(voxelTypeName(type));
+    case VoxelType::F32:
+        return "float";
+    case VoxelType::F64:
+        return "double";
+    default:
+        return std::string(voxelTypeName(type));
     }
 }
 
@@ -77,7 +80,8 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzi
         throw InputError(ctx + ": volume has " + std::to_string(volume.data.size()) +
                          " bytes of data but its dims and type need " + std::to_string(bytes));
     }
-    for (int a = 0; a < 3; ++a) detail::checkSpacing(volume.spacing[a], a, ctx);
+    for (int a = 0; a < 3; ++a)
+        detail::checkSpacing(volume.spacing[a], a, ctx);
 
     const std::filesystem::path temporary = temporaryPath(path);
     const auto fail = [&](const std::string& why) {
@@ -89,8 +93,8 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzi
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) {
             const int error = errno;
-            const auto folder = path.parent_path().empty() ? std::filesystem::path(".")
-                                                            : path.parent_path();
+            const auto folder =
+                path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
             throw fail("cannot create a file in folder '" + folder.string() + "' (" +
                        std::strerror(error) + ")");
         }
@@ -107,7 +111,8 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzi
             if (gzip) {
                 detail::writeGzip(out, voxels, bytes, ctx);
             } else {
-                out.write(reinterpret_cast<const char*>(voxels), static_cast<std::streamsize>(bytes));
+                out.write(reinterpret_cast<const char*>(voxels),
+                          static_cast<std::streamsize>(bytes));
             }
         } catch (const RuntimeError&) {
             throw fail("writing the data failed (disk full?)");

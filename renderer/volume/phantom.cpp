@@ -7,11 +7,11 @@
 // the voxels with x <= centre only, at |x|, and copied to the mirrored voxel.
 #include "volume/phantom.hpp"
 
+#include "core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-
-#include "core/error.hpp"
 
 namespace cutaway {
 
@@ -24,9 +24,13 @@ inline double cover(double inside, double w) {
     return t * t * (3.0 - 2.0 * t);
 }
 
-inline double mix(double a, double b, double t) { return a + (b - a) * t; }
+inline double mix(double a, double b, double t) {
+    return a + (b - a) * t;
+}
 
-inline double length3(double x, double y, double z) { return std::sqrt(x * x + y * y + z * z); }
+inline double length3(double x, double y, double z) {
+    return std::sqrt(x * x + y * y + z * z);
+}
 
 inline std::uint8_t toByte(double v) {
     return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
@@ -96,7 +100,8 @@ inline double sulcusDepth(double ux, double uy, double uz) {
     const double t = std::min(s / 0.35, 1.0);
     const double groove = 1.0 - t * t * (3.0 - 2.0 * t);
     // The longitudinal fissure between the hemispheres, above the temporal lobes.
-    const double f = std::max(0.0, 1.0 - std::fabs(ux) / 0.06) * std::clamp((uz + 0.3) / 0.4, 0.0, 1.0);
+    const double f =
+        std::max(0.0, 1.0 - std::fabs(ux) / 0.06) * std::clamp((uz + 0.3) / 0.4, 0.0, 1.0);
     return std::max(groove, 2.0 * f * f * (3.0 - 2.0 * f));
 }
 
@@ -153,14 +158,18 @@ void head(double x, double y, double z, double w, Sample& out) {
         value = mix(value, brainValue, brain);
     }
     out.value = value;
-    if (brain >= 0.5) out.label = 3;
-    else if (skullOut >= 0.5 && skullIn < 0.5 && eye < 0.5) out.label = 2;
-    else if (skin >= 0.5) out.label = 1;
-    else out.label = 0;
+    if (brain >= 0.5)
+        out.label = 3;
+    else if (skullOut >= 0.5 && skullIn < 0.5 && eye < 0.5)
+        out.label = 2;
+    else if (skin >= 0.5)
+        out.label = 1;
+    else
+        out.label = 0;
 }
 
 // --- orange -------------------------------------------------------------------
-constexpr double kFlatten = 0.92; // polar semi-axis / equatorial
+constexpr double kFlatten = 0.92;    // polar semi-axis / equatorial
 constexpr double kPithStart = 0.935; // rind / white pith boundary (radius in q)
 constexpr double kSegmentsEnd = 0.885;
 constexpr double kCoreRadius = 0.085;
@@ -178,7 +187,8 @@ void orange(double x, double y, double z, double w, Sample& out) {
     double surface = 1.0;
     if (r > 0.95 && r > 1e-9) {
         const double ux = x / r, uy = y / r, uz = zf / r;
-        const double dimple = 0.5 + 0.5 * std::cos(58.0 * ux) * std::cos(58.0 * uy) * std::cos(58.0 * uz);
+        const double dimple =
+            0.5 + 0.5 * std::cos(58.0 * ux) * std::cos(58.0 * uy) * std::cos(58.0 * uz);
         const double bumps = std::cos(7.0 * ux) * std::cos(6.0 * uy + 1.0) * std::cos(5.0 * uz);
         surface += 0.008 * bumps - 0.012 * dimple * dimple * dimple;
     }
@@ -208,15 +218,21 @@ void orange(double x, double y, double z, double w, Sample& out) {
         }
     }
     out.value = value;
-    if (segment >= 0.5) out.label = 3;
-    else if (pith >= 0.5) out.label = 2;
-    else if (rind >= 0.5) out.label = 1;
-    else out.label = 0;
+    if (segment >= 0.5)
+        out.label = 3;
+    else if (pith >= 0.5)
+        out.label = 2;
+    else if (rind >= 0.5)
+        out.label = 1;
+    else
+        out.label = 0;
 }
 
 } // namespace
 
-std::vector<std::string> phantomNames() { return {"head", "orange"}; }
+std::vector<std::string> phantomNames() {
+    return {"head", "orange"};
+}
 
 Phantom makePhantom(std::string_view name, glm::ivec3 dims, glm::dvec3 spacing) {
     const std::string ctx = "phantom '" + std::string(name) + "'";
@@ -225,8 +241,9 @@ Phantom makePhantom(std::string_view name, glm::ivec3 dims, glm::dvec3 spacing) 
     }
     for (int a = 0; a < 3; ++a) {
         if (dims[a] < 8 || dims[a] > 1024) {
-            throw InputError(ctx + ": size " + std::to_string(dims.x) + "x" + std::to_string(dims.y) +
-                             "x" + std::to_string(dims.z) + " is out of range (each in [8, 1024])");
+            throw InputError(ctx + ": size " + std::to_string(dims.x) + "x" +
+                             std::to_string(dims.y) + "x" + std::to_string(dims.z) +
+                             " is out of range (each in [8, 1024])");
         }
         if (!std::isfinite(spacing[a]) || spacing[a] <= 0.0) {
             throw InputError(ctx + ": spacing must be finite and > 0");

@@ -10,7 +10,8 @@ Volume readRaw(const std::filesystem::path& path, const RawLayout& layout) {
     const std::string ctx = path.string();
     const std::int64_t sizes[3] = {layout.dims.x, layout.dims.y, layout.dims.z};
     const std::size_t bytes = detail::checkedByteCount(sizes, layout.type, ctx);
-    for (int a = 0; a < 3; ++a) detail::checkSpacing(layout.spacing[a], a, ctx);
+    for (int a = 0; a < 3; ++a)
+        detail::checkSpacing(layout.spacing[a], a, ctx);
     const std::uint64_t fileSize = detail::regularFileSize(path);
     if (layout.offset > fileSize) {
         throw InputError(ctx + ": offset " + std::to_string(layout.offset) +

@@ -1,38 +1,50 @@
 #include "volume/volume.hpp"
 
+#include "core/error.hpp"
+#include "volume/io_util.hpp"
+
 #include <cmath>
 #include <cstring>
 #include <limits>
-
-#include "core/error.hpp"
-#include "volume/io_util.hpp"
 
 namespace cutaway {
 
 std::size_t voxelSize(VoxelType type) {
     switch (type) {
     case VoxelType::U8:
-    case VoxelType::I8: return 1;
+    case VoxelType::I8:
+        return 1;
     case VoxelType::U16:
-    case VoxelType::I16: return 2;
+    case VoxelType::I16:
+        return 2;
     case VoxelType::U32:
     case VoxelType::I32:
-    case VoxelType::F32: return 4;
-    case VoxelType::F64: return 8;
+    case VoxelType::F32:
+        return 4;
+    case VoxelType::F64:
+        return 8;
     }
     return 1; // unreachable for a valid enumerator
 }
 
 std::string_view voxelTypeName(VoxelType type) {
     switch (type) {
-    case VoxelType::U8: return "uint8";
-    case VoxelType::I8: return "int8";
-    case VoxelType::U16: return "uint16";
-    case VoxelType::I16: return "int16";
-    case VoxelType::U32: return "uint32";
-    case VoxelType::I32: return "int32";
-    case VoxelType::F32: return "float32";
-    case VoxelType::F64: return "float64";
+    case VoxelType::U8:
+        return "uint8";
+    case VoxelType::I8:
+        return "int8";
+    case VoxelType::U16:
+        return "uint16";
+    case VoxelType::I16:
+        return "int16";
+    case VoxelType::U32:
+        return "uint32";
+    case VoxelType::I32:
+        return "int32";
+    case VoxelType::F32:
+        return "float32";
+    case VoxelType::F64:
+        return "float64";
     }
     return "unknown";
 }
@@ -57,7 +69,8 @@ std::size_t Volume::voxelCount() const {
 std::size_t Volume::index(int x, int y, int z) const {
     return static_cast<std::size_t>(x) +
            static_cast<std::size_t>(dims.x) *
-               (static_cast<std::size_t>(y) + static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(z));
+               (static_cast<std::size_t>(y) +
+                static_cast<std::size_t>(dims.y) * static_cast<std::size_t>(z));
 }
 
 namespace {
@@ -73,14 +86,22 @@ T load(const std::byte* p) {
 template <typename F>
 decltype(auto) withType(VoxelType type, F&& f) {
     switch (type) {
-    case VoxelType::U8: return f(std::uint8_t{});
-    case VoxelType::I8: return f(std::int8_t{});
-    case VoxelType::U16: return f(std::uint16_t{});
-    case VoxelType::I16: return f(std::int16_t{});
-    case VoxelType::U32: return f(std::uint32_t{});
-    case VoxelType::I32: return f(std::int32_t{});
-    case VoxelType::F32: return f(float{});
-    case VoxelType::F64: return f(double{});
+    case VoxelType::U8:
+        return f(std::uint8_t{});
+    case VoxelType::I8:
+        return f(std::int8_t{});
+    case VoxelType::U16:
+        return f(std::uint16_t{});
+    case VoxelType::I16:
+        return f(std::int16_t{});
+    case VoxelType::U32:
+        return f(std::uint32_t{});
+    case VoxelType::I32:
+        return f(std::int32_t{});
+    case VoxelType::F32:
+        return f(float{});
+    case VoxelType::F64:
+        return f(double{});
     }
     return f(std::uint8_t{});
 }
@@ -95,7 +116,8 @@ double Volume::raw(std::size_t i) const {
 Volume Volume::allocate(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing) {
     const std::int64_t sizes[3] = {dims.x, dims.y, dims.z};
     const std::size_t bytes = detail::checkedByteCount(sizes, type, "volume");
-    for (int a = 0; a < 3; ++a) detail::checkSpacing(spacing[a], a, "volume");
+    for (int a = 0; a < 3; ++a)
+        detail::checkSpacing(spacing[a], a, "volume");
     Volume volume;
     volume.dims = dims;
     volume.spacing = spacing;
@@ -105,7 +127,8 @@ Volume Volume::allocate(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing) {
 }
 
 ValueRange valueRange(const Volume& volume) {
-    const std::size_t count = std::min(volume.voxelCount(), volume.data.size() / voxelSize(volume.type));
+    const std::size_t count =
+        std::min(volume.voxelCount(), volume.data.size() / voxelSize(volume.type));
     return withType(volume.type, [&](auto tag) {
         using T = decltype(tag);
         double lo = std::numeric_limits<double>::infinity();
@@ -138,8 +161,7 @@ Volume readVolume(const std::filesystem::path& path) {
     const std::string name = detail::toLower(path.filename().string());
     if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return readNrrd(path);
     if (endsWith(name, ".nii") || endsWith(name, ".nii.gz")) return readNifti(path);
-    throw InputError(path.string() + ": unsupported file extension '" +
-                     path.extension().string() +
+    throw InputError(path.string() + ": unsupported file extension '" + path.extension().string() +
                      "' (supported: .nrrd, .nhdr, .nii, .nii.gz; headerless raw files need an "
                      "explicit layout)");
 }

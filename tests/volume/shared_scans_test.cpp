@@ -23,7 +23,9 @@ const Scan kScans[] = {
 };
 
 // Names the scan in test output instead of dumping its bytes.
-void PrintTo(const Scan& scan, std::ostream* os) { *os << scan.file; }
+void PrintTo(const Scan& scan, std::ostream* os) {
+    *os << scan.file;
+}
 
 class SharedScans : public ::testing::TestWithParam<Scan> {};
 

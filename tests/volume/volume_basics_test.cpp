@@ -1,0 +1,125 @@
+// Volume itself (indexing, typed access, value ranges) and NIfTI header
+// details the round trips do not reach: pixdim 0, a unit 4th dimension,
+// the origin, and where the data would start.
+#include "volume_test_util.hpp"
+
+#include <cmath>
+
+namespace cutaway::test {
+
+TEST(VolumeBasics, IndexRawAndValue) {
+    Volume v = Volume::allocate({3, 4, 5}, VoxelType::I16, {1, 2, 3});
+    EXPECT_EQ(v.voxelCount(), 60u);
+    EXPECT_EQ(v.data.size(), 120u);
+    EXPECT_EQ(v.index(2, 3, 4), 2u + 3u * (3u + 4u * 4u));
+    EXPECT_EQ(v.extent(), glm::dvec3(3, 8, 15));
+    reinterpret_cast<std::int16_t*>(v.data.data())[v.index(1, 2, 3)] = -7;
+    v.slope = 3.0;
+    v.inter = 1.0;
+    EXPECT_EQ(v.raw(v.index(1, 2, 3)), -7.0);
+    EXPECT_EQ(v.value(1, 2, 3), -20.0);
+    EXPECT_EQ(v.value(0, 0, 0), 1.0) << "allocate zeroes the voxels";
+    EXPECT_THROW(Volume::allocate({0, 4, 5}, VoxelType::U8), InputError);
+    EXPECT_THROW(Volume::allocate({4, 4, 4}, VoxelType::U8, {1, NAN, 1}), InputError);
+}
+
+TEST(VolumeBasics, ValueRangeSkipsNanAndFollowsScaling) {
+    Volume v = Volume::allocate({4, 1, 1}, VoxelType::F32);
+    auto* f = reinterpret_cast<float*>(v.data.data());
+    f[0] = NAN;
+    f[1] = -2.5f;
+    f[2] = 7.0f;
+    f[3] = NAN;
+    ValueRange r = valueRange(v);
+    EXPECT_EQ(r.min, -2.5);
+    EXPECT_EQ(r.max, 7.0);
+    v.slope = -2.0; // a negative slope swaps the ends
+    v.inter = 1.0;
+    r = valueRange(v);
+    EXPECT_EQ(r.min, -13.0);
+    EXPECT_EQ(r.max, 6.0);
+    f[1] = f[2] = NAN;
+    r = valueRange(v);
+    EXPECT_EQ(r.min, 0.0);
+    EXPECT_EQ(r.max, 0.0);
+
+    Volume u = Volume::allocate({2, 1, 1}, VoxelType::U32);
+    reinterpret_cast<std::uint32_t*>(u.data.data())[1] = 4000000000u;
+    EXPECT_EQ(valueRange(u).max, 4e9) << "unsigned 32-bit values above 2^31";
+}
+
+using NiftiDetails = VolumeFiles;
+
+TEST_F(NiftiDetails, PixdimZeroIsOneMillimetreAndUnitFourthDimension) {
+    NiftiHeader h;
+    h.dims[0] = 4;
+    h.dims[1] = 2;
+    h.dims[2] = 3;
+    h.dims[3] = 1;
+    h.dims[4] = 1;
+    h.pixdim[1] = 0.0f; // many tools write 0 when they do not know
+    h.pixdim[2] = 0.75f;
+    h.pixdim[3] = -2.0f;
+    const Volume v = readVolume(writeFile("p.nii", h.bytes() + std::string(6, '\x05')));
+    EXPECT_EQ(v.dims, glm::ivec3(2, 3, 1));
+    EXPECT_EQ(v.spacing, glm::dvec3(1.0, 0.75, 2.0));
+    EXPECT_EQ(v.value(5), 5.0);
+}
+
+TEST_F(NiftiDetails, OriginFromSformElseQform) {
+    NiftiHeader h;
+    std::string bytes = h.bytes();
+    const std::int16_t one = 1;
+    const float qoffset[3] = {1.5f, -2.0f, 3.0f};
+    const float srowX[4] = {1, 0, 0, -90.0f};
+    std::memcpy(&bytes[252], &one, 2); // qform_code
+    std::memcpy(&bytes[268], qoffset, 12);
+    EXPECT_EQ(readVolume(writeFile("q.nii", bytes + "\x01")).origin, glm::dvec3(1.5, -2, 3));
+    std::memcpy(&bytes[254], &one, 2); // sform_code wins
+    std::memcpy(&bytes[280], srowX, 16);
+    EXPECT_EQ(readVolume(writeFile("s.nii", bytes + "\x01")).origin, glm::dvec3(-90, 0, 0));
+}
+
+TEST_F(NiftiDetails, DataAfterExtensionsAndOffsetsPastTheEnd) {
+    NiftiHeader h;
+    h.dims[1] = 4;
+    h.voxOffset = 400; // 48 bytes of extensions
+    const std::string file = h.bytes() + std::string(48, 'e') + "\x01\x02\x03\x04";
+    const Volume v = readVolume(writeFile("ext.nii", file));
+    EXPECT_EQ(v.raw(0), 1);
+    EXPECT_EQ(v.raw(3), 4);
+    EXPECT_EQ(readVolume(writeFile("ext.nii.gz", gzip(file))).raw(3), 4);
+
+    h.voxOffset = 5000;
+    for (const std::string name : {"far.nii", "far.nii.gz"}) {
+        const std::string bytes = h.bytes() + "\x01\x02\x03\x04";
+        const auto path = writeFile(name, name.ends_with(".gz") ? gzip(bytes) : bytes);
+        const std::string message = inputError([&] { readVolume(path); });
+        EXPECT_NE(message.find(name), std::string::npos) << message;
+        EXPECT_NE(message.find("vox_offset 5000 is beyond the end"), std::string::npos) << message;
+    }
+}
+
+TEST_F(NiftiDetails, UnsupportedVariantsAreNamed) {
+    NiftiHeader pair;
+    pair.magic = "ni1";
+    std::string message = inputError([&] { readVolume(writeFile("pair.nii", pair.bytes())); });
+    EXPECT_NE(message.find("ni1"), std::string::npos) << message;
+    NiftiHeader two;
+    two.sizeofHdr = 540;
+    message = inputError([&] { readVolume(writeFile("two.nii", two.bytes())); });
+    EXPECT_NE(message.find("NIfTI-2"), std::string::npos) << message;
+    NiftiHeader complex;
+    complex.datatype = 32;
+    message = inputError([&] { readVolume(writeFile("c.nii", complex.bytes() + "12345678")); });
+    EXPECT_NE(message.find("complex64"), std::string::npos) << message;
+}
+
+TEST_F(NiftiDetails, ExtensionsAreMatchedWithoutRegardToCase) {
+    NiftiHeader h;
+    EXPECT_EQ(readVolume(writeFile("UPPER.NII", h.bytes() + "\x09")).raw(0), 9);
+    // Content decides compression: a gzipped file named .nii still reads.
+    EXPECT_EQ(readVolume(writeFile("zipped.nii", gzip(h.bytes() + "\x09"))).raw(0), 9);
+}
+
+} // namespace cutaway::test
