@@ -54,6 +54,8 @@ Imf::Header makeHeader(const Image& image, const ExrOptions& options) {
     const Imf::PixelType type = options.halfFloat ? Imf::HALF : Imf::FLOAT;
     for (const char* name : kChannelNames)
         header.channels().insert(name, Imf::Channel(type));
+    for (const ExrChannel& extra : options.channels)
+        header.channels().insert(extra.name, Imf::Channel(Imf::FLOAT));
     // "software" is not one of OpenEXR's standard attributes; it is a plain
     // string attribute by convention. Inserted first so a caller's attribute
     // of the same name wins.
@@ -69,7 +71,7 @@ Imf::Header makeHeader(const Image& image, const ExrOptions& options) {
 // only reliable sign that the file is complete.
 template <typename Pixel>
 void writePixels(const fs::path& tmp, const Imf::Header& header, const Pixel* pixels, int width,
-                 int height, Imf::PixelType type) {
+                 int height, Imf::PixelType type, const std::vector<ExrChannel>& extra) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw RuntimeError("cannot create " + tmp.string());
     {
@@ -83,6 +85,12 @@ void writePixels(const fs::path& tmp, const Imf::Header& header, const Pixel* pi
                 kChannelNames[c],
                 Imf::Slice::Make(type, pixels + c, header.dataWindow(), xStride, yStride));
         }
+        for (const ExrChannel& channel : extra) {
+            frameBuffer.insert(channel.name,
+                               Imf::Slice::Make(Imf::FLOAT, channel.values->data(),
+                                                header.dataWindow(), sizeof(float),
+                                                sizeof(float) * static_cast<std::size_t>(width)));
+        }
         file.setFrameBuffer(frameBuffer);
         file.writePixels(height);
     }
@@ -94,6 +102,11 @@ void writePixels(const fs::path& tmp, const Imf::Header& header, const Pixel* pi
 
 void writeExr(const fs::path& path, const Image& image, const ExrOptions& options) {
     checkImage(path, image);
+    for (const ExrChannel& channel : options.channels) {
+        if (!channel.values || channel.values->size() != image.rgba.size() / 4)
+            throw RuntimeError("cannot write " + path.string() + ": channel " + channel.name +
+                               " does not have one value per pixel");
+    }
     writeAtomically(path, [&](const fs::path& tmp) {
         try {
             const Imf::Header header = makeHeader(image, options);
@@ -101,9 +114,11 @@ void writeExr(const fs::path& path, const Image& image, const ExrOptions& option
                 std::vector<half> halves(image.rgba.size());
                 for (std::size_t i = 0; i < halves.size(); ++i)
                     halves[i] = toHalf(image.rgba[i]);
-                writePixels(tmp, header, halves.data(), image.width, image.height, Imf::HALF);
+                writePixels(tmp, header, halves.data(), image.width, image.height, Imf::HALF,
+                            options.channels);
             } else {
-                writePixels(tmp, header, image.rgba.data(), image.width, image.height, Imf::FLOAT);
+                writePixels(tmp, header, image.rgba.data(), image.width, image.height, Imf::FLOAT,
+                            options.channels);
             }
         } catch (const std::exception& e) { // ours, and Iex::BaseExc which derives from it
             throw RuntimeError("cannot write " + path.string() + ": " + e.what());
@@ -155,6 +170,32 @@ std::string readExrStringAttribute(const fs::path& path, const std::string& name
         Imf::InputFile file(path.c_str());
         const auto* attribute = file.header().findTypedAttribute<Imf::StringAttribute>(name);
         return attribute ? attribute->value() : std::string();
+    } catch (const std::exception& e) {
+        throw InputError("cannot read EXR " + path.string() + ": " + e.what());
+    }
+}
+
+} // namespace cutaway
+
+namespace cutaway {
+
+std::vector<float> readExrChannel(const fs::path& path, const std::string& name) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i window = file.header().dataWindow();
+        if (!file.header().channels().findChannel(name))
+            throw InputError("cannot read " + path.string() + ": no channel " + name);
+        const std::size_t width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
+        const std::size_t height = static_cast<std::size_t>(window.max.y - window.min.y + 1);
+        std::vector<float> values(width * height);
+        Imf::FrameBuffer frameBuffer;
+        frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, values.data(), window, sizeof(float),
+                                                  sizeof(float) * width));
+        file.setFrameBuffer(frameBuffer);
+        file.readPixels(window.min.y, window.max.y);
+        return values;
+    } catch (const InputError&) {
+        throw;
     } catch (const std::exception& e) {
         throw InputError("cannot read EXR " + path.string() + ": " + e.what());
     }

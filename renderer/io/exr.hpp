@@ -11,9 +11,16 @@
 
 namespace cutaway {
 
+/// A channel beyond RGBA: one 32-bit float per pixel, rows as in Image.
+struct ExrChannel {
+    std::string name;
+    const std::vector<float>* values = nullptr;
+};
+
 struct ExrOptions {
     bool halfFloat = true;
     std::vector<std::pair<std::string, std::string>> attributes; ///< extra string attributes
+    std::vector<ExrChannel> channels; ///< extra FLOAT channels (e.g. operator ids)
 };
 
 void writeExr(const std::filesystem::path& path, const Image& image,
@@ -22,6 +29,9 @@ void writeExr(const std::filesystem::path& path, const Image& image,
 /// Reads the R, G, B, A channels of an EXR (any pixel type) into an Image.
 /// Missing channels read as 0 (alpha as 1). Throws InputError on failure.
 Image readExr(const std::filesystem::path& path);
+
+/// Reads one channel as floats (row 0 at the top); throws InputError when absent.
+std::vector<float> readExrChannel(const std::filesystem::path& path, const std::string& name);
 
 /// Reads one string attribute; empty when absent.
 std::string readExrStringAttribute(const std::filesystem::path& path, const std::string& name);

@@ -10,6 +10,9 @@ struct Image {
     int width = 0;
     int height = 0;
     std::vector<float> rgba; ///< width * height * 4
+    /// Optional, width * height: which proxy each pixel's first visible sample
+    /// came from: operator index (0-based), -1 the untouched volume, -2 nothing.
+    std::vector<float> operatorIds;
 
     Image() = default;
     Image(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(w) * h * 4, 0.0f) {}

@@ -140,6 +140,8 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                               {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
                               {"cutaway/version", CUTAWAY_VERSION},
                               {"cutaway/scene", frameScene.document.dump()}};
+            if (!image.operatorIds.empty())
+                exr.channels.push_back({"operator_id", &image.operatorIds});
             createOutputFolder(event.exr);
             writeExr(event.exr, image, exr);
             if (event.png) writePng(*event.png, image);

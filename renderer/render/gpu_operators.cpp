@@ -11,7 +11,8 @@ bool sameMap(const OperatorSpec& a, const OperatorSpec& b) {
     return std::memcmp(&a.params, &b.params, sizeof a.params) == 0 && a.resolution == b.resolution;
 }
 
-shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::WorldBox& box) {
+shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::WorldBox& box,
+                                    std::size_t index) {
     shader::OperatorUniforms u{};
     u.localToWorld = glm::mat4(spec.localToWorld);
     u.worldToLocal = glm::mat4(glm::inverse(spec.localToWorld));
@@ -22,7 +23,8 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
     // D of Eq. 7 from millimetres to local units: the mean scale of the frame.
     const glm::dmat3 a(spec.localToWorld);
     const double scale = (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
-    u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), 0.0f, 0.0f, 0.0f);
+    u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), static_cast<float>(index + 3),
+                       0.0f, 0.0f); // id code: see slice_common.h
     return u;
 }
 
@@ -59,7 +61,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs) {
             ++m_bakes;
         }
         op->spec = spec;
-        const shader::OperatorUniforms u = uniformsOf(spec, op->box);
+        const shader::OperatorUniforms u = uniformsOf(spec, op->box, i);
         std::memcpy(op->uniforms.mapped, &u, sizeof u);
     }
 }

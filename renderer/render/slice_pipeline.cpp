@@ -3,18 +3,33 @@
 #include "gpu/check.hpp"
 #include "gpu/pipeline.hpp"
 #include "slice_frag.spv.h"
+#include "slice_id_frag.spv.h"
 #include "slice_operator_frag.spv.h"
+#include "slice_operator_id_frag.spv.h"
 #include "slice_vert.spv.h"
 
 namespace cutaway::render {
 
+namespace {
+
+gpu::ShaderModuleHandle fragmentShader(const gpu::Context& ctx, SliceProxy proxy,
+                                       bool withOperatorId) {
+    if (proxy == SliceProxy::Operator)
+        return withOperatorId ? gpu::createShaderModule(ctx, slice_operator_id_frag_spv,
+                                                        sizeof(slice_operator_id_frag_spv))
+                              : gpu::createShaderModule(ctx, slice_operator_frag_spv,
+                                                        sizeof(slice_operator_frag_spv));
+    return withOperatorId
+               ? gpu::createShaderModule(ctx, slice_id_frag_spv, sizeof(slice_id_frag_spv))
+               : gpu::createShaderModule(ctx, slice_frag_spv, sizeof(slice_frag_spv));
+}
+
+} // namespace
+
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
-                                        SliceProxy proxy) {
+                                        SliceProxy proxy, bool withOperatorId) {
     auto vert = gpu::createShaderModule(ctx, slice_vert_spv, sizeof(slice_vert_spv));
-    auto frag =
-        proxy == SliceProxy::Operator
-            ? gpu::createShaderModule(ctx, slice_operator_frag_spv, sizeof(slice_operator_frag_spv))
-            : gpu::createShaderModule(ctx, slice_frag_spv, sizeof(slice_frag_spv));
+    auto frag = fragmentShader(ctx, proxy, withOperatorId);
     VkPipelineShaderStageCreateInfo stages[2] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
          VK_SHADER_STAGE_VERTEX_BIT, vert.get(), "main", nullptr},
@@ -80,10 +95,11 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
     blend.alphaBlendOp = VK_BLEND_OP_ADD;
     blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                            VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    const VkPipelineColorBlendAttachmentState blends[2] = {blend, blend}; // same rule for the id
     VkPipelineColorBlendStateCreateInfo blendState{
         VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    blendState.attachmentCount = 1;
-    blendState.pAttachments = &blend;
+    blendState.attachmentCount = withOperatorId ? 2u : 1u;
+    blendState.pAttachments = blends;
 
     VkDynamicState dynamicStates[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR,
                                       VK_DYNAMIC_STATE_STENCIL_REFERENCE};
@@ -91,10 +107,10 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
     dynamic.dynamicStateCount = 3;
     dynamic.pDynamicStates = dynamicStates;
 
-    const VkFormat colorFormat = ctx.formats().color;
+    const VkFormat colorFormats[2] = {ctx.formats().color, kOperatorIdFormat};
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = 1;
-    rendering.pColorAttachmentFormats = &colorFormat;
+    rendering.colorAttachmentCount = withOperatorId ? 2u : 1u;
+    rendering.pColorAttachmentFormats = colorFormats;
     rendering.depthAttachmentFormat = ctx.formats().depthStencil;
     rendering.stencilAttachmentFormat = ctx.formats().depthStencil;
 

@@ -19,7 +19,12 @@ enum class SliceProxy {
     Operator    ///< slice_operator.frag; stencil always passes, writes ref
 };
 
+/// The operator-id target: RGBA16F, see shaders/glsl/slice_common.h.
+constexpr VkFormat kOperatorIdFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+/// `withOperatorId`: a second colour attachment receives the id of the proxy
+/// whose sample was the first visible one in each pixel.
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
-                                        SliceProxy proxy);
+                                        SliceProxy proxy, bool withOperatorId);
 
 } // namespace cutaway::render

@@ -8,6 +8,7 @@
 #include "render/transfer_table.hpp"
 #include "shared/frame.h"
 
+#include <cmath>
 #include <cstring>
 #include <glm/gtc/packing.hpp>
 
@@ -76,25 +77,42 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
         ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, frag, nullptr},
               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get(), m_operatorSetLayout.get()});
-    m_pipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Background);
-    m_operatorPipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Operator);
+    m_pipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Background, false);
+    m_operatorPipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Operator, false);
     m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
 
-void SliceRenderer::ensureTargets(uint32_t width, uint32_t height) {
-    if (m_color.image && m_color.extent.width == width && m_color.extent.height == height) return;
-    m_color =
-        gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    m_depthStencil =
-        gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil, {width, height, 1},
-                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                         VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
-    const VkDeviceSize texel = m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
-    m_readback =
-        gpu::createBuffer(m_ctx, texel * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOperatorId) {
+    const bool sized =
+        m_color.image && m_color.extent.width == width && m_color.extent.height == height;
+    if (!sized) {
+        m_color =
+            gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        m_depthStencil =
+            gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil,
+                             {width, height, 1}, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                             VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
+        const VkDeviceSize texel = m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
+        m_readback = gpu::createBuffer(m_ctx, texel * width * height,
+                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        m_operatorId = {};
+        m_operatorIdReadback = {};
+    }
+    if (withOperatorId && !m_operatorId.image) {
+        m_operatorId =
+            gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, kOperatorIdFormat, {width, height, 1},
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        m_operatorIdReadback =
+            gpu::createBuffer(m_ctx, 8ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    }
+    if (withOperatorId && !m_idPipeline) {
+        m_idPipeline = createSlicePipeline(m_ctx, m_layout.get(), SliceProxy::Background, true);
+        m_operatorIdPipeline =
+            createSlicePipeline(m_ctx, m_layout.get(), SliceProxy::Operator, true);
+    }
 }
 
 void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
@@ -104,16 +122,19 @@ void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
 }
 
 void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
-                                 VkDescriptorSet frameSet) const {
+                                 VkDescriptorSet frameSet, bool withOperatorId) const {
+    const VkPipeline background = withOperatorId ? m_idPipeline.get() : m_pipeline.get();
+    const VkPipeline operatorPipeline =
+        withOperatorId ? m_operatorIdPipeline.get() : m_operatorPipeline.get();
     VkDeviceSize offset = 0;
     VkBuffer vb = m_vertices.buffer.get();
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 0, 1, &frameSet,
                             0, nullptr);
     const auto& ops = m_operators->operators();
-    const int background = static_cast<int>(ops.size()); // proxies: operators, then the volume
-    if (ops.empty()) {                                   // one draw: nothing to composite
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
+    const int volumeProxy = static_cast<int>(ops.size()); // proxies: operators, then the volume
+    if (ops.empty()) {                                    // one draw: nothing to composite
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, background);
         vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1);
         vkCmdDraw(cmd, static_cast<uint32_t>(slices.triangles.size()), 1, 0, 0);
         return;
@@ -130,10 +151,10 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
         vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK,
                                  static_cast<uint32_t>(k % 255 + 1));
         for (const SliceDraw& d : slices.slices[k]) {
-            if (d.proxy == background) {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
+            if (d.proxy == volumeProxy) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, background);
             } else {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_operatorPipeline.get());
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, operatorPipeline);
                 VkDescriptorSet set = ops[static_cast<std::size_t>(d.proxy)]->set.set;
                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 1, 1,
                                         &set, 0, nullptr);
@@ -168,7 +189,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     if (vertexBytes) std::memcpy(m_vertices.mapped, slices.triangles.data(), vertexBytes);
     const shader::FrameUniforms uniforms = frameUniforms(scene, volume, cam, sliceMm);
     std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
-    ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
+    const bool withId = scene.output.operatorId;
+    ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height), withId);
     gpu::Image transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
 
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
@@ -184,12 +206,19 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                               m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, transfer.view.get(), ro, m_sampler.get());
 
+    std::vector<const gpu::Image*> targets{&m_color};
+    std::vector<const gpu::Buffer*> readbacks{&m_readback};
+    if (withId) {
+        targets.push_back(&m_operatorId);
+        readbacks.push_back(&m_operatorIdReadback);
+    }
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        gpu::transition(cmd, m_color, VK_IMAGE_LAYOUT_UNDEFINED,
-                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
-                        VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
-                            VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
+        for (const gpu::Image* target : targets)
+            gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_UNDEFINED,
+                            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                            VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT |
+                                VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT);
         gpu::transition(cmd, m_depthStencil, VK_IMAGE_LAYOUT_UNDEFINED,
                         VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
                         VK_ACCESS_2_NONE,
@@ -197,12 +226,16 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                             VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 
-        VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        color.imageView = m_color.view.get();
-        color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        VkRenderingAttachmentInfo colors[2];
+        for (std::size_t t = 0; t < targets.size(); ++t) {
+            VkRenderingAttachmentInfo& color = colors[t];
+            color = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            color.imageView = targets[t]->view.get();
+            color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+            color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+        }
         VkRenderingAttachmentInfo ds{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
         ds.imageView = m_depthStencil.view.get();
         ds.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
@@ -212,8 +245,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, {m_color.extent.width, m_color.extent.height}};
         info.layerCount = 1;
-        info.colorAttachmentCount = 1;
-        info.pColorAttachments = &color;
+        info.colorAttachmentCount = static_cast<uint32_t>(targets.size());
+        info.pColorAttachments = colors;
         info.pDepthAttachment = &ds;
         info.pStencilAttachment = &ds;
         vkCmdBeginRendering(cmd, &info);
@@ -221,19 +254,22 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                             0.0f, 1.0f};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
-        if (!slices.triangles.empty()) recordSlices(cmd, slices, set.set);
+        if (!slices.triangles.empty()) recordSlices(cmd, slices, set.set, withId);
         vkCmdEndRendering(cmd);
 
-        gpu::transition(cmd, m_color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                        VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_TRANSFER_READ_BIT);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = m_color.extent;
-        vkCmdCopyImageToBuffer(cmd, m_color.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               m_readback.buffer.get(), 1, &region);
+        for (std::size_t t = 0; t < targets.size(); ++t) {
+            gpu::transition(cmd, *targets[t], VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                            VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                            VK_ACCESS_2_TRANSFER_READ_BIT);
+            VkBufferImageCopy region{};
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+            region.imageExtent = targets[t]->extent;
+            vkCmdCopyImageToBuffer(cmd, targets[t]->image.get(),
+                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readbacks[t]->buffer.get(),
+                                   1, &region);
+        }
         VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
         toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
         toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
@@ -253,6 +289,15 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         const auto* halves = static_cast<const uint16_t*>(m_readback.mapped);
         for (std::size_t i = 0; i < count; ++i)
             image.rgba[i] = glm::unpackHalf1x16(halves[i]);
+    }
+    if (withId) { // codes: 0 nothing visible, 2 the untouched volume, 3 + i operator i
+        const auto* halves = static_cast<const uint16_t*>(m_operatorIdReadback.mapped);
+        image.operatorIds.resize(count / 4);
+        for (std::size_t p = 0; p < image.operatorIds.size(); ++p) {
+            const float code = glm::unpackHalf1x16(halves[4 * p]);
+            const float covered = glm::unpackHalf1x16(halves[4 * p + 3]);
+            image.operatorIds[p] = covered > 0.5f ? std::round(code) - 3.0f : -2.0f;
+        }
     }
     // The background lies behind everything: composite it "under" the volume.
     const glm::vec4 bg = scene.render.background;

@@ -40,23 +40,28 @@ public:
     const FrameStats& lastStats() const { return m_stats; }
 
 private:
-    void ensureTargets(uint32_t width, uint32_t height);
+    void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId);
     void ensureVertexCapacity(std::size_t bytes);
-    void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet) const;
+    void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet,
+                      bool withOperatorId) const;
 
     const gpu::Context& m_ctx;
     gpu::SamplerHandle m_sampler;
     gpu::DescriptorSetLayoutHandle m_setLayout;         ///< set 0: frame
     gpu::DescriptorSetLayoutHandle m_operatorSetLayout; ///< set 1: one operator
     gpu::PipelineLayoutHandle m_layout;
-    gpu::PipelineHandle m_pipeline;         ///< background proxy
-    gpu::PipelineHandle m_operatorPipeline; ///< operator proxies
+    gpu::PipelineHandle m_pipeline;           ///< background proxy
+    gpu::PipelineHandle m_operatorPipeline;   ///< operator proxies
+    gpu::PipelineHandle m_idPipeline;         ///< the two above with the operator-id target,
+    gpu::PipelineHandle m_operatorIdPipeline; ///< made the first time a scene asks for it
     std::unique_ptr<OperatorStack> m_operators;
     gpu::Buffer m_uniforms;
     gpu::Buffer m_vertices;
     gpu::Image m_color;
     gpu::Image m_depthStencil;
     gpu::Buffer m_readback;
+    gpu::Image m_operatorId; ///< only while scenes ask for output.operator_id
+    gpu::Buffer m_operatorIdReadback;
     FrameStats m_stats;
 };
 

@@ -118,6 +118,7 @@ struct OutputSettings {
     std::string pattern = "cutaway_####.exr"; ///< resolved against the scene's folder when relative
     PixelType pixelType = PixelType::Half;    ///< /output/pixel_type: "half" | "float"
     bool png = false;                         ///< /output/png: also write an sRGB PNG preview
+    bool operatorId = false; ///< /output/operator_id: an EXR channel "operator_id" (see Image)
 };
 
 /// /animation/tracks/N/interpolation

@@ -88,12 +88,16 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
 ///                scene file's folder.
 ///  * pixel_type  string, "half" or "float", default "half": EXR channel type
 ///  * png         boolean, default false: also write an 8-bit sRGB PNG preview
+///  * operator_id boolean, default false: add a float channel "operator_id" to the EXR,
+///                the operator (0-based) each pixel's first visible sample came from,
+///                -1 for the untouched volume, -2 where nothing is visible
 void parseOutput(JsonReader& reader, OutputSettings& output) {
     output.pattern = reader.string("pattern", output.pattern);
     output.pixelType = reader.string("pixel_type", "half", {"half", "float"}) == "float"
                            ? PixelType::Float
                            : PixelType::Half;
     output.png = reader.boolean("png", output.png);
+    output.operatorId = reader.boolean("operator_id", output.operatorId);
 }
 
 } // namespace scene_detail

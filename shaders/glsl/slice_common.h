@@ -11,6 +11,25 @@ layout(set = 0, binding = 1) uniform sampler3D volumeTex;
 layout(set = 0, binding = 2) uniform sampler3D gradientTex;
 layout(set = 0, binding = 3) uniform sampler2D transferTex;
 
+layout(location = 0) out vec4 outColor;
+#ifdef CW_WRITE_ID
+// Which proxy the first visible sample of a pixel came from: written with the
+// same front-to-back blending as the colour, the first write that reaches this
+// attachment saturates its alpha, so later fragments add nothing. Codes:
+// 2 the untouched volume, 3 + i operator i (0 = nothing visible).
+layout(location = 1) out vec4 outId;
+#endif
+#define CW_ID_BACKGROUND 2.0
+// A sample is visible when its opacity reaches this.
+#define CW_ID_MIN_ALPHA 0.01
+
+void emit(vec4 color, float code) {
+    outColor = color;
+#ifdef CW_WRITE_ID
+    outId = color.a >= CW_ID_MIN_ALPHA ? vec4(code, 0.0, 0.0, 1.0) : vec4(0.0);
+#endif
+}
+
 vec3 toTexture(vec3 world) { return (u.worldToTexture * vec4(world, 1.0)).xyz; }
 
 vec3 toEyeFrom(vec3 world) {

@@ -12,7 +12,7 @@ struct OperatorUniforms {
     mat4 localToWorld; // A of Eq. 8
     vec4 mapLo;        // xyz: local corner of the baked map's domain (the deformed box V'_T)
     vec4 mapHi;        // xyz: opposite corner; w: one texel of the map, local units
-    vec4 band;         // x: D of Eq. 7 in local units (0: no blending)
+    vec4 band;         // x: D of Eq. 7 in local units (0: no blending); y: id code, 3 + index
 };
 
 // Baking: the push constants of operator_bake.comp.

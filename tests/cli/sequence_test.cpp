@@ -1,6 +1,7 @@
 // Sequences through the binary: turntables, shards, resuming, interruption,
 // per-frame failures, EXR headers; every example scene and bad scene.
 #include "cli_util.hpp"
+#include "core/error.hpp"
 #include "io/exr.hpp"
 #include "job/render_job.hpp"
 
@@ -220,6 +221,26 @@ TEST_F(CliTest, EveryBadSceneExitsTwoNamingItsLocation) {
         ++count;
     }
     EXPECT_GE(count, 30);
+}
+
+} // namespace cutaway::test
+
+namespace cutaway::test {
+
+TEST_F(CliTest, OperatorIdChannelIsWrittenOnRequest) {
+    const fs::path scene = write("op.json", R"({ "version": 1,
+      "volume": { "phantom": "head", "size": [24, 24, 24] },
+      "render": { "size": [20, 16] },
+      "operators": [ { "type": "retractor", "placement": { "translate": [0, 0, 6], "scale": [16, 20, 12] } } ],
+      "output": { "pattern": "frames/t_####.exr" } })");
+    ASSERT_EQ(runCutaway("render " + scene.string()).code, 0);
+    EXPECT_THROW(readExrChannel(m_dir / "frames" / "t_0000.exr", "operator_id"), InputError);
+    CommandResult r = runCutaway("render " + scene.string() + " --set /output/operator_id=true");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto ids = readExrChannel(m_dir / "frames" / "t_0000.exr", "operator_id");
+    ASSERT_EQ(ids.size(), 20u * 16u);
+    EXPECT_NE(std::find(ids.begin(), ids.end(), 0.0f), ids.end()) << "the retractor is visible";
+    EXPECT_EQ(ids[0], -2.0f) << "a corner sees nothing";
 }
 
 } // namespace cutaway::test

@@ -233,3 +233,36 @@ TEST_F(GpuTest, SequentialCompositionRendersOverlappingOperators) {
 }
 
 } // namespace cutaway::test
+
+namespace cutaway::test {
+
+TEST_F(GpuTest, OperatorIdChannelNamesTheFirstVisibleSamplesOperator) {
+    Scene s = parsedWith(R"([
+        { "type": "retractor", "placement": { "translate": [-12, 0, 12], "scale": [20, 30, 24] },
+          "params": { "opening": 8 } },
+        { "type": "pliers", "placement": { "translate": [12, 0, 12], "scale": [20, 30, 24] },
+          "params": { "radius": 9, "displacement": [3, 0, 0] } }])");
+    const Image plain = renderScene(ctx(), s);
+    s.output.operatorId = true;
+    const Image img = renderScene(ctx(), s);
+    ASSERT_EQ(img.operatorIds.size(), std::size_t(img.width * img.height));
+    EXPECT_EQ(img.rgba, plain.rgba) << "the id target must not change the picture";
+
+    // 48 px over 60 mm, centred, +y up: pixel (x, y) -> world ((x + 0.5) * 1.25 - 30,
+    // 30 - (y + 0.5) * 1.25). The boxes cover x in [-22, -2] and [2, 22], |y| < 15.
+    auto id = [&](int x, int y) { return img.operatorIds[std::size_t(y * img.width + x)]; };
+    EXPECT_EQ(id(0, 0), -2.0f) << "a corner sees nothing";
+    EXPECT_EQ(id(14, 24), 0.0f)
+        << "world (-11.9, 0.6): inside the retractor's box, seen from above";
+    EXPECT_EQ(id(33, 24), 1.0f) << "world (11.9, 0.6): inside the pliers' box";
+    EXPECT_EQ(id(24, 24), -1.0f) << "world (0.6, -0.6): the head between the two boxes";
+    int counts[4] = {0, 0, 0, 0};
+    for (float v : img.operatorIds) {
+        ASSERT_TRUE(v == -2.0f || v == -1.0f || v == 0.0f || v == 1.0f) << v;
+        ++counts[static_cast<int>(v) + 2];
+    }
+    for (int c : counts)
+        EXPECT_GT(c, 20);
+}
+
+} // namespace cutaway::test

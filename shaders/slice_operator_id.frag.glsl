@@ -1,0 +1,4 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#define CW_WRITE_ID
+#include "glsl/slice_operator.h"
