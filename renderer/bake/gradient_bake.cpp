@@ -38,25 +38,8 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing) con
     params.magnitudeScale = static_cast<float>(2.0 * std::min({spacing.x, spacing.y, spacing.z}));
     params.halfInvSpacing = glm::vec3(0.5 / spacing);
 
-    m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        gpu::transition(cmd, out, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                        VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &set.set,
-                                0, nullptr);
-        vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params),
-                           &params);
-        vkCmdDispatch(cmd, (values.extent.width + 7) / 8, (values.extent.height + 7) / 8,
-                      (values.extent.depth + 3) / 4);
-        gpu::transition(cmd, out, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-    });
+    gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &params,
+                          sizeof(params), glm::uvec3(8, 8, 4));
     return out;
 }
 

@@ -33,23 +33,8 @@ gpu::Image OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 l
     push.mapLo = glm::vec4(lo, 0.0f);
     push.mapHi = glm::vec4(hi, 0.0f);
     push.dims = dims;
-    m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        gpu::transition(cmd, out, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                        VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &set.set,
-                                0, nullptr);
-        vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
-                           &push);
-        vkCmdDispatch(cmd, (extent.width + 3) / 4, (extent.height + 3) / 4, (extent.depth + 3) / 4);
-        gpu::transition(cmd, out, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
-    });
+    gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &push,
+                          sizeof(push), glm::uvec3(4, 4, 4));
     return out;
 }
 

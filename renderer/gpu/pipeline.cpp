@@ -1,6 +1,7 @@
 #include "gpu/pipeline.hpp"
 
 #include "gpu/check.hpp"
+#include "gpu/resources.hpp"
 
 namespace cutaway::gpu {
 
@@ -57,6 +58,29 @@ PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     return PipelineHandle(ctx.device(), pipeline);
+}
+
+void computeIntoImage(const Context& ctx, const Image& target, VkPipeline pipeline,
+                      VkPipelineLayout layout, VkDescriptorSet set, const void* push,
+                      uint32_t pushBytes, glm::uvec3 groupSize) {
+    const VkExtent3D e = target.extent;
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        transition(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                   VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
+                                nullptr);
+        vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
+        vkCmdDispatch(cmd, (e.width + groupSize.x - 1) / groupSize.x,
+                      (e.height + groupSize.y - 1) / groupSize.y,
+                      (e.depth + groupSize.z - 1) / groupSize.z);
+        transition(cmd, target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                   VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                   VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                       VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+    });
 }
 
 DescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorSetLayout layout,

@@ -4,9 +4,11 @@
 // pipelines. The graphics pipeline lives with the renderer that uses it.
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
+#include "gpu/resources.hpp"
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -30,6 +32,14 @@ PipelineLayoutHandle createPipelineLayout(const Context& ctx,
 
 PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
                                      VkShaderModule module);
+
+/// Runs a compute pipeline that writes every texel of `target` (a storage
+/// image bound in `set`), in groups of `groupSize`, then leaves `target` in
+/// SHADER_READ_ONLY_OPTIMAL for fragment shaders, compute shaders and copies.
+/// Blocks until done.
+void computeIntoImage(const Context& ctx, const Image& target, VkPipeline pipeline,
+                      VkPipelineLayout layout, VkDescriptorSet set, const void* push,
+                      uint32_t pushBytes, glm::uvec3 groupSize);
 
 /// A pool sized for `sets` sets of the given descriptor counts, and one set from it.
 struct DescriptorSet {

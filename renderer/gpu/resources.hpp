@@ -40,6 +40,9 @@ void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkI
                 VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
                 VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
+/// Makes transfer writes (a copy into a host-visible buffer) visible to the host.
+void barrierTransferToHost(VkCommandBuffer cmd);
+
 /// Copies tightly packed texels into the whole image and leaves it in
 /// `finalLayout`, readable by `dstStage`. Blocks until done.
 void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,

@@ -270,15 +270,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readbacks[t]->buffer.get(),
                                    1, &region);
         }
-        VkMemoryBarrier2 toHost{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &toHost;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        gpu::barrierTransferToHost(cmd);
     });
 
     Image image(width, height);
