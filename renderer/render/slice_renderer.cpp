@@ -191,7 +191,18 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
     const bool withId = scene.output.operatorId;
     ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height), withId);
-    gpu::Image transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
+    // Everything the classification table depends on; a turntable keeps it.
+    std::vector<double> transferKey{
+        double(scene.render.classification == Classification::Preintegrated), volume.window.lo,
+        volume.window.hi, sliceMm, volume.smallestSpacing()};
+    for (const TransferPoint& p : scene.transfer.points)
+        transferKey.insert(transferKey.end(),
+                           {p.value, p.color.x, p.color.y, p.color.z, double(p.alpha)});
+    if (!m_transfer.image || transferKey != m_transferKey) {
+        m_transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
+        m_transferKey = std::move(transferKey);
+    }
+    const gpu::Image& transfer = m_transfer;
 
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),

@@ -60,7 +60,9 @@ private:
     gpu::Image m_color;
     gpu::Image m_depthStencil;
     gpu::Buffer m_readback;
-    gpu::Image m_operatorId; ///< only while scenes ask for output.operator_id
+    gpu::Image m_transfer;             ///< classification table, remade when its inputs change
+    std::vector<double> m_transferKey; ///< those inputs (pre-integration costs ~170 ms)
+    gpu::Image m_operatorId;           ///< only while scenes ask for output.operator_id
     gpu::Buffer m_operatorIdReadback;
     FrameStats m_stats;
 };

@@ -1,8 +1,12 @@
 // Properties of the slicing renderer that a wrong implementation would break.
 // Images are small (tens of pixels) and phantoms coarse so lavapipe is quick.
+#include "bake/gradient_bake.hpp"
 #include "gpu_fixture.hpp"
 #include "io/exr.hpp"
+#include "job/render_job.hpp"
 #include "render/camera.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/slice_renderer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -209,6 +213,31 @@ TEST_F(GpuTest, ExrReadBackEqualsRenderedPixels) {
     for (std::size_t i = 0; i < img.rgba.size(); ++i)
         ASSERT_NEAR(halfBack.rgba[i], img.rgba[i], std::abs(img.rgba[i]) * 0x1p-11f + 6e-8f) << i;
     std::filesystem::remove_all(dir);
+}
+
+} // namespace cutaway::test
+
+namespace cutaway::test {
+
+// The renderer keeps its classification table between frames: changing what
+// the table depends on must remake it.
+TEST_F(GpuTest, AReusedRendererFollowsTransferAndSpacingChanges) {
+    Scene a = headScene(32, 40, 40);
+    Scene b = a;
+    b.transfer.points[4].color = {0.2f, 0.9f, 0.3f}; // a green skull
+    Scene c = b;
+    c.render.sliceSpacing = 0.5;
+    const Volume volume = job::loadSceneVolume(a);
+    bake::GradientBaker baker(ctx());
+    const render::GpuVolume gv =
+        render::prepareVolume(ctx(), baker, volume, job::sceneWindow(a, volume));
+    render::SliceRenderer reused(ctx());
+    reused.render(a, gv);
+    const Image b1 = reused.render(b, gv);
+    const Image c1 = reused.render(c, gv);
+    EXPECT_EQ(b1.rgba, renderVolume(ctx(), b, volume).rgba);
+    EXPECT_EQ(c1.rgba, renderVolume(ctx(), c, volume).rgba);
+    EXPECT_GT(compareImages(b1, renderVolume(ctx(), a, volume)).maxAbs, 0.1f);
 }
 
 } // namespace cutaway::test
