@@ -65,10 +65,6 @@ Polygon slicePolygon(const Proxy& proxy, glm::dvec3 normal, double offset) {
     return poly.size() >= 3 ? poly : Polygon{};
 }
 
-Polygon slicePolygon(const Box& box, glm::dvec3 normal, double offset) {
-    return slicePolygon(boxProxy(box), normal, offset);
-}
-
 SliceSet buildSlices(const std::vector<Proxy>& proxies, glm::dvec3 eye, glm::dvec3 forward,
                      double spacing, double minDepth) {
     SliceSet set;

@@ -35,7 +35,6 @@ Proxy orientedBoxProxy(const glm::dmat4& localToWorld, glm::dvec3 lo, glm::dvec3
 
 /// The intersection of the plane dot(normal, p) = offset with the proxy (empty if none).
 Polygon slicePolygon(const Proxy& proxy, glm::dvec3 normal, double offset);
-Polygon slicePolygon(const Box& box, glm::dvec3 normal, double offset);
 
 /// Triangles of one proxy on one slice: [first, first + count) of SliceSet::triangles.
 struct SliceDraw {
