@@ -19,7 +19,8 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) --parallel $(JOBS)
 
-demo: build
+demo: configure
+	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway
 	@$(BUILD)/cutaway render scenes/demo.json --png
 	@echo "demo: open out/demo_0000.exr (linear, premultiplied RGBA) or out/demo_0000.png"
 
