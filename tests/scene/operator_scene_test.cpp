@@ -1,0 +1,73 @@
+// /operators in the scene: placement (Eq. 8) in both forms, parameters in
+// millimetres converted to the operator's local frame.
+#include "scene_test_util.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+namespace cutaway::test {
+namespace {
+
+OperatorSpec onlyOperator(const std::string& op) {
+    const Scene s =
+        parseScene(patched(R"({"operators": [)" + op + "]}"), "/nonexistent", "scene.json");
+    EXPECT_EQ(s.operators.size(), 1u);
+    return s.operators.at(0);
+}
+
+} // namespace
+
+TEST(OperatorScene, MatrixAndTranslateRotateScaleAgree) {
+    const OperatorSpec trs = onlyOperator(R"({ "type": "retractor",
+        "placement": { "translate": [10, -20, 30], "rotate": [90, 0, 30], "scale": [40, 20, 10] } })");
+    // The same map written out: T * Rz(30) * Ry(0) * Rx(90) * S(half sizes).
+    glm::dmat4 a = glm::translate(glm::dmat4(1.0), glm::dvec3(10, -20, 30));
+    a = glm::rotate(a, glm::radians(30.0), glm::dvec3(0, 0, 1));
+    a = glm::rotate(a, glm::radians(90.0), glm::dvec3(1, 0, 0));
+    a = glm::scale(a, glm::dvec3(20, 10, 5));
+    std::string rows;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) {
+            if (!rows.empty()) rows += ',';
+            rows += std::to_string(a[c][r]);
+        }
+    const OperatorSpec m =
+        onlyOperator(R"({ "type": "retractor", "placement": { "matrix": [)" + rows + "] } }");
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) {
+            EXPECT_NEAR(trs.localToWorld[c][r], a[c][r], 1e-9) << c << "," << r;
+            EXPECT_NEAR(m.localToWorld[c][r], a[c][r], 1e-5) << c << "," << r;
+        }
+    // The local +z axis (toward the surface) goes to world -y after Rx(90), then Rz(30).
+    const glm::dvec3 up = glm::normalize(glm::dvec3(trs.localToWorld[2]));
+    EXPECT_NEAR(up.z, 0.0, 1e-12);
+    EXPECT_NEAR(glm::length(up), 1.0, 1e-12);
+    // Parameters in mm become local units of each axis: opening 8 mm across x (half size 20).
+    const OperatorSpec r = onlyOperator(R"({ "type": "retractor",
+        "placement": { "scale": [40, 20, 10] }, "params": { "length": 10, "depth": 4, "opening": 8 } })");
+    EXPECT_FLOAT_EQ(r.params.a.x, 0.5f); // half length 5 mm / half y 10 mm
+    EXPECT_FLOAT_EQ(r.params.a.y, 0.8f); // depth 4 mm / half z 5 mm
+    EXPECT_FLOAT_EQ(r.params.a.z, 0.2f); // half opening 4 mm / half x 20 mm
+}
+
+TEST(OperatorScene, BadPlacementsAreReported) {
+    EXPECT_NE(parseError(patched(R"({"operators": [{ "type": "pliers",
+        "placement": { "matrix": [1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1] } }]})"))
+                  .find("/operators/0/placement/matrix: expected an invertible affine matrix"),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"operators": [{ "type": "pliers",
+        "placement": { "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1], "scale": [1, 1, 1] } }]})"))
+                  .find("/operators/0/placement/scale: not allowed together with \"matrix\""),
+              std::string::npos);
+    EXPECT_NE(parseError(patched(R"({"operators": [{ "type": "pliers", "placement": {} }]})"))
+                  .find("/operators/0/placement/scale"),
+              std::string::npos);
+    EXPECT_NE(
+        parseError(
+            patched(R"({"operators": [{ "type": "dilator", "placement": { "scale": [10, 10, 10] },
+        "alignment": { "mode": "surface" } }]})"))
+            .find("/operators/0/alignment/mode: \"surface\" alignment is not supported yet"),
+        std::string::npos);
+}
+
+} // namespace cutaway::test
