@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <regex>
+#include <sstream>
 
 namespace cutaway::job {
 
@@ -52,13 +53,30 @@ FrameVolume frameVolume(const Scene& scene) {
 }
 
 std::string frameVolumeKey(const Scene& scene) {
-    std::string key = scene.document.value("volume", nlohmann::json()).dump();
-    if (sequential(scene)) {
-        const nlohmann::json ops = scene.document.value("operators", nlohmann::json::array());
-        for (std::size_t i = 0; i + 1 < ops.size(); ++i)
-            key += ops[i].dump();
+    // Built from the parsed scene, not its JSON, so scenes made in code work too.
+    const VolumeSource& v = scene.volume;
+    std::ostringstream key;
+    key.precision(17);
+    key << v.file.string() << '|' << v.phantom << '|' << v.phantomSize.x << ',' << v.phantomSize.y
+        << ',' << v.phantomSize.z;
+    if (v.raw)
+        key << "|raw " << v.raw->dims.x << ',' << v.raw->dims.y << ',' << v.raw->dims.z << ','
+            << voxelTypeName(v.raw->type) << ',' << v.raw->spacing.x << ',' << v.raw->spacing.y
+            << ',' << v.raw->spacing.z << ',' << v.raw->bigEndian << ',' << v.raw->offset;
+    if (v.spacing) key << "|spacing " << v.spacing->x << ',' << v.spacing->y << ',' << v.spacing->z;
+    if (v.window) key << "|window " << (*v.window)[0] << ',' << (*v.window)[1];
+    if (sequential(scene)) { // the operators baked into the intermediate volume
+        for (std::size_t i = 0; i + 1 < scene.operators.size(); ++i) {
+            const OperatorSpec& op = scene.operators[i];
+            key << "|op";
+            for (int c = 0; c < 4; ++c)
+                key << ' ' << op.params.a[c] << ' ' << op.params.b[c] << ' ' << op.params.kind[c];
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    key << ' ' << op.localToWorld[c][r];
+        }
     }
-    return key;
+    return key.str();
 }
 
 std::vector<OperatorSpec> liveOperators(const Scene& scene) {
@@ -99,17 +117,26 @@ void applyOverrides(Scene& scene, const RenderOverrides& overrides) {
     if (overrides.png) scene.output.png = true;
 }
 
-namespace {} // namespace
+FrameRenderer::FrameRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx), m_renderer(ctx) {}
 
-Image renderImage(const gpu::Context& ctx, const Scene& scene) {
-    const FrameVolume fv = frameVolume(scene);
-    bake::GradientBaker baker(ctx);
-    render::GpuVolume gpuVolume =
-        render::prepareVolume(ctx, baker, fv.placed.volume, fv.window, fv.placed.worldLo);
-    render::SliceRenderer renderer(ctx);
+Image FrameRenderer::render(const Scene& scene) {
+    // Same key, same volume: its texture and gradients are kept.
+    const std::string key = frameVolumeKey(scene);
+    if (!m_volume || key != m_volumeKey) {
+        m_volume.reset(); // free the old textures before making new ones
+        const FrameVolume fv = frameVolume(scene);
+        m_volume = std::make_unique<render::GpuVolume>(
+            render::prepareVolume(m_ctx, m_baker, fv.placed.volume, fv.window, fv.placed.worldLo));
+        m_volumeKey = key;
+        ++m_uploads;
+    }
     Scene live = scene;
     live.operators = liveOperators(scene);
-    return renderer.render(live, gpuVolume);
+    return m_renderer.render(live, *m_volume);
+}
+
+Image renderImage(const gpu::Context& ctx, const Scene& scene) {
+    return FrameRenderer(ctx).render(scene);
 }
 
 } // namespace cutaway::job

@@ -2,15 +2,19 @@
 // Runs a scene: loads its volume (a file or a phantom), prepares it on the
 // device once, renders frames and writes them (EXR, optional PNG preview).
 // The CLI is a thin layer over this; tests drive it directly.
+#include "bake/gradient_bake.hpp"
 #include "bake/volume_upload.hpp"
 #include "gpu/context.hpp"
 #include "io/image.hpp"
 #include "operators/deformed_volume.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/slice_renderer.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -59,6 +63,24 @@ struct RenderOverrides {
 
 /// Applies overrides to a parsed scene (validated by the caller).
 void applyOverrides(Scene& scene, const RenderOverrides& overrides);
+
+/// Turns scenes into images, keeping the device-side state between calls: the
+/// pipelines, and the uploaded volume with its baked gradients for as long as
+/// frameVolumeKey stays the same.
+class FrameRenderer {
+public:
+    explicit FrameRenderer(const gpu::Context& ctx);
+    Image render(const Scene& scene);
+    int uploads() const { return m_uploads; } ///< volumes loaded, uploaded and baked so far
+
+private:
+    const gpu::Context& m_ctx;
+    bake::GradientBaker m_baker;
+    render::SliceRenderer m_renderer;
+    std::unique_ptr<render::GpuVolume> m_volume;
+    std::string m_volumeKey;
+    int m_uploads = 0;
+};
 
 /// Renders one frame to an image without writing anything (tests, benchmark).
 Image renderImage(const gpu::Context& ctx, const Scene& scene);

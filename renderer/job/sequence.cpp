@@ -1,15 +1,11 @@
 #include "job/sequence.hpp"
 
-#include "bake/gradient_bake.hpp"
 #include "core/error.hpp"
 #include "io/exr.hpp"
 #include "io/png.hpp"
-#include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
 #include "scene/animation.hpp"
 
 #include <chrono>
-#include <map>
 #include <memory>
 #include <regex>
 
@@ -30,38 +26,6 @@ void createOutputFolder(const std::filesystem::path& file) {
         throw RuntimeError("cannot create the output folder " + file.parent_path().string() + ": " +
                            ec.message());
 }
-
-// The device-side state a run keeps between frames.
-class FrameRenderer {
-public:
-    explicit FrameRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx), m_renderer(ctx) {}
-
-    Image render(const Scene& scene) {
-        // Same key, same volume: its texture and gradients are kept.
-        const std::string key = frameVolumeKey(scene);
-        if (!m_volume || key != m_volumeKey) {
-            m_volume.reset(); // free the old textures before making new ones
-            const FrameVolume fv = frameVolume(scene);
-            m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
-                m_ctx, m_baker, fv.placed.volume, fv.window, fv.placed.worldLo));
-            m_volumeKey = key;
-            ++m_uploads;
-        }
-        Scene live = scene;
-        live.operators = liveOperators(scene);
-        return m_renderer.render(live, *m_volume);
-    }
-
-    int uploads() const { return m_uploads; }
-
-private:
-    const gpu::Context& m_ctx;
-    bake::GradientBaker m_baker;
-    render::SliceRenderer m_renderer;
-    std::unique_ptr<render::GpuVolume> m_volume;
-    std::string m_volumeKey;
-    int m_uploads = 0;
-};
 
 } // namespace
 
