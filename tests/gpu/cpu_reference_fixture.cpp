@@ -43,30 +43,8 @@ CpuVolume cpuVolume(const Volume& volume, bake::ValueWindow window) {
     v.dims = volume.dims;
     for (uint16_t t : bake::normalizeVolume(volume, window))
         v.values.push_back(t / 65535.0f);
-    shader::GradientParams params{};
-    params.dims = volume.dims;
-    params.magnitudeScale =
-        static_cast<float>(2.0 * std::min({volume.spacing.x, volume.spacing.y, volume.spacing.z}));
-    params.halfInvSpacing = glm::vec3(0.5 / volume.spacing);
-    auto at = [&](int x, int y, int z) {
-        x = std::clamp(x, 0, v.dims.x - 1), y = std::clamp(y, 0, v.dims.y - 1),
-        z = std::clamp(z, 0, v.dims.z - 1);
-        return v.values[static_cast<std::size_t>(x + v.dims.x * (y + v.dims.y * z))];
-    };
-    for (int z = 0; z < v.dims.z; ++z)
-        for (int y = 0; y < v.dims.y; ++y)
-            for (int x = 0; x < v.dims.x; ++x) {
-                glm::vec3 d(0.0f);
-                for (int a = -1; a <= 1; ++a)
-                    for (int b = -1; b <= 1; ++b) {
-                        const float w = shader::sobelWeight(a, b);
-                        d.x += w * (at(x + 1, y + a, z + b) - at(x - 1, y + a, z + b));
-                        d.y += w * (at(x + a, y + 1, z + b) - at(x + a, y - 1, z + b));
-                        d.z += w * (at(x + a, y + b, z + 1) - at(x + a, y + b, z - 1));
-                    }
-                glm::vec4 g = shader::encodeGradient(d, params);
-                v.gradients.push_back(glm::round(g * 127.0f) / 127.0f); // SNORM8
-            }
+    for (const glm::vec4& g : cpuGradients(volume, window))
+        v.gradients.push_back(glm::round(g * 127.0f) / 127.0f); // SNORM8, as stored
     return v;
 }
 
@@ -87,6 +65,37 @@ glm::vec4 lookup2D(const std::vector<glm::vec4>& table, int n, glm::vec2 uv) {
 }
 
 } // namespace
+
+std::vector<glm::vec4> cpuGradients(const Volume& volume, bake::ValueWindow window) {
+    const glm::ivec3 dims = volume.dims;
+    const std::vector<uint16_t> norm = bake::normalizeVolume(volume, window);
+    shader::GradientParams params{};
+    params.dims = dims;
+    params.magnitudeScale =
+        static_cast<float>(2.0 * std::min({volume.spacing.x, volume.spacing.y, volume.spacing.z}));
+    params.halfInvSpacing = glm::vec3(0.5 / volume.spacing);
+    auto at = [&](int x, int y, int z) {
+        x = std::clamp(x, 0, dims.x - 1), y = std::clamp(y, 0, dims.y - 1),
+        z = std::clamp(z, 0, dims.z - 1);
+        return norm[volume.index(x, y, z)] / 65535.0f;
+    };
+    std::vector<glm::vec4> out;
+    out.reserve(volume.voxelCount());
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                glm::vec3 d(0.0f);
+                for (int a = -1; a <= 1; ++a)
+                    for (int b = -1; b <= 1; ++b) {
+                        const float w = shader::sobelWeight(a, b);
+                        d.x += w * (at(x + 1, y + a, z + b) - at(x - 1, y + a, z + b));
+                        d.y += w * (at(x + a, y + 1, z + b) - at(x + a, y - 1, z + b));
+                        d.z += w * (at(x + a, y + b, z + 1) - at(x + a, y + b, z - 1));
+                    }
+                out.push_back(shader::encodeGradient(d, params));
+            }
+    return out;
+}
 
 Image renderCpuReference(const Scene& scene, const Volume& volume) {
     const bake::ValueWindow window = job::sceneWindow(scene, volume);
