@@ -92,14 +92,19 @@ void checkNoOverlap(const std::vector<OperatorSpec>& operators) {
     std::vector<WorldBox> boxes;
     for (const auto& op : operators)
         boxes.push_back(worldBox(op));
+    checkNoOverlap(operators, boxes);
+}
+
+void checkNoOverlap(const std::vector<OperatorSpec>& operators,
+                    const std::vector<WorldBox>& boxes) {
     for (std::size_t i = 0; i < boxes.size(); ++i)
         for (std::size_t j = i + 1; j < boxes.size(); ++j)
             if (intersects(boxes[i], boxes[j]))
                 throw InputError("/operators/" + std::to_string(i) + " and /operators/" +
                                  std::to_string(j) + ": \"" + operators[i].name + "\" and \"" +
                                  operators[j].name +
-                                 "\" overlap (their deformed boxes intersect); move them apart, "
-                                 "or render them in separate passes");
+                                 "\" overlap (their deformed boxes intersect); move them apart, or "
+                                 "set render.operator_composition to \"sequential\"");
 }
 
 } // namespace cutaway::operators

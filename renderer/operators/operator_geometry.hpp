@@ -42,5 +42,7 @@ bool intersects(const WorldBox& a, const WorldBox& b);
 
 /// Throws InputError naming both operators when two deformed boxes overlap.
 void checkNoOverlap(const std::vector<OperatorSpec>& operators);
+/// The same with the boxes already computed (boxes[i] is operators[i]'s).
+void checkNoOverlap(const std::vector<OperatorSpec>& operators, const std::vector<WorldBox>& boxes);
 
 } // namespace cutaway::operators

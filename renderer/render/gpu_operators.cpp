@@ -35,7 +35,16 @@ OperatorStack::OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setL
     : m_ctx(ctx), m_setLayout(setLayout), m_sampler(sampler), m_baker(ctx) {}
 
 void OperatorStack::update(const std::vector<OperatorSpec>& specs) {
-    operators::checkNoOverlap(specs);
+    // Deformed bounds depend only on the parameters: keep them while the map is kept.
+    std::vector<operators::WorldBox> boxes;
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+        const bool kept =
+            i < m_operators.size() && m_operators[i] && sameMap(m_operators[i]->spec, specs[i]);
+        boxes.push_back({specs[i].localToWorld,
+                         kept ? m_operators[i]->box.local
+                              : operators::deformedBounds(specs[i].params, specs[i].resolution)});
+    }
+    operators::checkNoOverlap(specs, boxes); // before anything changes
     m_operators.resize(specs.size());
     for (std::size_t i = 0; i < specs.size(); ++i) {
         auto& op = m_operators[i];
@@ -51,7 +60,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs) {
             gpu::writeBufferDescriptor(m_ctx, op->set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                        op->uniforms.buffer.get(), sizeof(shader::OperatorUniforms));
         }
-        op->box = operators::worldBox(spec);
+        op->box = boxes[i];
         if (rebake) {
             op->map = m_baker.bake(spec.params, glm::vec3(op->box.local.lo),
                                    glm::vec3(op->box.local.hi), spec.resolution);
