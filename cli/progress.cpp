@@ -16,6 +16,8 @@ void Progress::frame(const job::FrameEvent& event) {
         ++m_rendered;
     }
     if (!m_verbose) return;
+    for (const std::string& note : event.notes)
+        std::fprintf(stderr, "  %s\n", note.c_str());
     const int left = event.total - event.position;
     const double eta = m_rendered ? left * m_renderedSeconds / m_rendered : 0.0;
     if (event.kind == Kind::Skipped)

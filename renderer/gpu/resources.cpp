@@ -43,8 +43,11 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
     return b;
 }
 
-Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
-                  VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+namespace {
+
+Image makeImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
+                VkImageUsageFlags usage, VkImageAspectFlags aspect, uint32_t layers,
+                VkImageViewType viewType) {
     const auto& limits = ctx.properties().limits;
     const uint32_t maxDim =
         type == VK_IMAGE_TYPE_3D ? limits.maxImageDimension3D : limits.maxImageDimension2D;
@@ -57,12 +60,13 @@ Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExten
     img.format = format;
     img.extent = extent;
     img.aspect = aspect;
+    img.layers = layers;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = type;
     info.format = format;
     info.extent = extent;
     info.mipLevels = 1;
-    info.arrayLayers = 1;
+    info.arrayLayers = layers;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
     info.usage = usage;
@@ -79,13 +83,31 @@ Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExten
 
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     viewInfo.image = image;
-    viewInfo.viewType = type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.viewType = viewType;
     viewInfo.format = format;
-    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
+    viewInfo.subresourceRange = {aspect, 0, 1, 0, layers};
     VkImageView view = VK_NULL_HANDLE;
     VK_CHECK(vkCreateImageView(ctx.device(), &viewInfo, nullptr, &view));
     img.view = ImageViewHandle(ctx.device(), view);
     return img;
+}
+
+} // namespace
+
+Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
+                  VkImageUsageFlags usage, VkImageAspectFlags aspect) {
+    return makeImage(ctx, type, format, extent, usage, aspect, 1,
+                     type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D);
+}
+
+Image createImageArray(const Context& ctx, VkFormat format, VkExtent2D extent, uint32_t layers,
+                       VkImageUsageFlags usage) {
+    if (layers > ctx.properties().limits.maxImageArrayLayers)
+        throw RuntimeError(std::to_string(layers) + " image layers exceed the device limit of " +
+                           std::to_string(ctx.properties().limits.maxImageArrayLayers) + " (" +
+                           ctx.deviceName() + ")");
+    return makeImage(ctx, VK_IMAGE_TYPE_2D, format, {extent.width, extent.height, 1}, usage,
+                     VK_IMAGE_ASPECT_COLOR_BIT, layers, VK_IMAGE_VIEW_TYPE_2D_ARRAY);
 }
 
 void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to,
@@ -101,7 +123,7 @@ void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkI
     barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
     barrier.image = image.image.get();
-    barrier.subresourceRange = {image.aspect, 0, 1, 0, 1};
+    barrier.subresourceRange = {image.aspect, 0, 1, 0, image.layers};
     VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     dep.imageMemoryBarrierCount = 1;
     dep.pImageMemoryBarriers = &barrier;
@@ -129,7 +151,7 @@ void uploadImage(const Context& ctx, const Image& image, const void* data, std::
                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
                    VK_ACCESS_2_TRANSFER_WRITE_BIT);
         VkBufferImageCopy region{};
-        region.imageSubresource = {image.aspect, 0, 0, 1};
+        region.imageSubresource = {image.aspect, 0, 0, image.layers};
         region.imageExtent = image.extent;
         vkCmdCopyBufferToImage(cmd, staging.buffer.get(), image.image.get(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
@@ -141,15 +163,15 @@ void uploadImage(const Context& ctx, const Image& image, const void* data, std::
 
 std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkImageLayout layout,
                                      std::size_t bytesPerTexel) {
-    const std::size_t bytes =
-        bytesPerTexel * image.extent.width * image.extent.height * image.extent.depth;
+    const std::size_t bytes = bytesPerTexel * image.extent.width * image.extent.height *
+                              image.extent.depth * image.layers;
     Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         transition(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferImageCopy region{};
-        region.imageSubresource = {image.aspect, 0, 0, 1};
+        region.imageSubresource = {image.aspect, 0, 0, image.layers};
         region.imageExtent = image.extent;
         vkCmdCopyImageToBuffer(cmd, image.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                staging.buffer.get(), 1, &region);
@@ -163,10 +185,12 @@ std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkI
     return out;
 }
 
-SamplerHandle createLinearSampler(const Context& ctx) {
+namespace {
+
+SamplerHandle createSampler(const Context& ctx, VkFilter filter) {
     VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
+    info.magFilter = filter;
+    info.minFilter = filter;
     info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
     info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
@@ -175,6 +199,16 @@ SamplerHandle createLinearSampler(const Context& ctx) {
     VkSampler sampler = VK_NULL_HANDLE;
     VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
     return SamplerHandle(ctx.device(), sampler);
+}
+
+} // namespace
+
+SamplerHandle createLinearSampler(const Context& ctx) {
+    return createSampler(ctx, VK_FILTER_LINEAR);
+}
+
+SamplerHandle createNearestSampler(const Context& ctx) {
+    return createSampler(ctx, VK_FILTER_NEAREST);
 }
 
 } // namespace cutaway::gpu

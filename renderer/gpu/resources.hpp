@@ -29,11 +29,17 @@ struct Image {
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent3D extent{0, 0, 0};
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    uint32_t layers = 1; ///< array layers (2D arrays); transfers and barriers cover them all
 };
 
 /// A device-local image of type 2D (extent.depth == 1) or 3D, with a view.
 Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
                   VkImageUsageFlags usage, VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
+
+/// A device-local 2D array image of `layers` layers with a 2D_ARRAY view
+/// (also for one layer, so shaders can declare a sampler2DArray).
+Image createImageArray(const Context& ctx, VkFormat format, VkExtent2D extent, uint32_t layers,
+                       VkImageUsageFlags usage);
 
 /// Records a layout transition with a full-image barrier (synchronization2).
 void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkImageLayout to,
@@ -43,7 +49,7 @@ void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkI
 /// Makes transfer writes (a copy into a host-visible buffer) visible to the host.
 void barrierTransferToHost(VkCommandBuffer cmd);
 
-/// Copies tightly packed texels into the whole image and leaves it in
+/// Copies tightly packed texels (layer after layer) into the whole image and leaves it in
 /// `finalLayout`, readable by `dstStage`. Blocks until done.
 void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,
                  VkImageLayout finalLayout, VkPipelineStageFlags2 dstStage);
@@ -56,5 +62,7 @@ std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkI
 
 /// A linear-filtering, clamp-to-edge sampler.
 SamplerHandle createLinearSampler(const Context& ctx);
+/// A nearest-texel, clamp-to-edge sampler (integer textures read with texelFetch).
+SamplerHandle createNearestSampler(const Context& ctx);
 
 } // namespace cutaway::gpu

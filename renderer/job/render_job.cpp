@@ -24,6 +24,41 @@ Volume loadSceneVolume(const Scene& scene) {
     return volume;
 }
 
+std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene, const Volume& scan) {
+    if (!scene.labels) return nullptr;
+    const LabelSource& src = *scene.labels;
+    const std::string name =
+        src.phantom ? "the " + scene.volume.phantom + " phantom's labels" : src.file.string();
+    auto labels = std::make_shared<Volume>(
+        src.phantom ? makePhantom(scene.volume.phantom, scene.volume.phantomSize).labels
+                    : readVolume(src.file));
+    if (scene.volume.spacing) labels->spacing = *scene.volume.spacing;
+    const auto text = [](auto v) {
+        std::ostringstream out;
+        out << v.x << " x " << v.y << " x " << v.z;
+        return out.str();
+    };
+    if (labels->dims != scan.dims)
+        throw InputError(name + ": the label volume's grid is " + text(labels->dims) +
+                         " voxels, the scan's " + text(scan.dims) +
+                         "; labels must be on the scan's grid");
+    const glm::dvec3 ratio = labels->spacing / scan.spacing;
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(ratio[a] - 1.0) > 1e-3)
+            throw InputError(name + ": the label volume's spacing is " + text(labels->spacing) +
+                             " mm, the scan's " + text(scan.spacing) +
+                             " mm; labels must be on the scan's grid");
+    }
+    if (labels->type == VoxelType::F32 || labels->type == VoxelType::F64 || labels->slope != 1.0 ||
+        labels->inter != 0.0)
+        throw InputError(name + ": label ids must be stored as integers (got " +
+                         std::string(voxelTypeName(labels->type)) +
+                         (labels->slope != 1.0 || labels->inter != 0.0 ? " with scaling" : "") +
+                         ")");
+    if (valueRange(*labels).min < 0.0) throw InputError(name + ": label ids must not be negative");
+    return labels;
+}
+
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {
     if (scene.volume.window) return {(*scene.volume.window)[0], (*scene.volume.window)[1]};
     const ValueRange range = valueRange(volume);
@@ -49,7 +84,11 @@ FrameVolume frameVolume(const Scene& scene) {
         // transfer function that is transparent for air.
         placed = operators::resampleSequentially(placed, baked, static_cast<float>(window.lo));
     }
-    return FrameVolume{std::move(placed), window};
+    // Sequential composition with several operators resamples the scan; the
+    // parser allows no labels then (they would no longer match it).
+    std::shared_ptr<const Volume> labels =
+        sequential(scene) ? nullptr : loadSceneLabels(scene, placed.volume);
+    return FrameVolume{std::move(placed), window, std::move(labels)};
 }
 
 std::string frameVolumeKey(const Scene& scene) {
@@ -65,6 +104,7 @@ std::string frameVolumeKey(const Scene& scene) {
             << ',' << v.raw->spacing.z << ',' << v.raw->bigEndian << ',' << v.raw->offset;
     if (v.spacing) key << "|spacing " << v.spacing->x << ',' << v.spacing->y << ',' << v.spacing->z;
     if (v.window) key << "|window " << (*v.window)[0] << ',' << (*v.window)[1];
+    if (scene.labels) key << "|labels " << scene.labels->file.string() << scene.labels->phantom;
     if (sequential(scene)) { // the operators baked into the intermediate volume
         for (std::size_t i = 0; i + 1 < scene.operators.size(); ++i) {
             const OperatorSpec& op = scene.operators[i];
@@ -124,9 +164,10 @@ Image FrameRenderer::render(const Scene& scene) {
     const std::string key = frameVolumeKey(scene);
     if (!m_volume || key != m_volumeKey) {
         m_volume.reset(); // free the old textures before making new ones
-        const FrameVolume fv = frameVolume(scene);
-        m_volume = std::make_unique<render::GpuVolume>(
-            render::prepareVolume(m_ctx, m_baker, fv.placed.volume, fv.window, fv.placed.worldLo));
+        FrameVolume fv = frameVolume(scene);
+        m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
+            m_ctx, m_baker, std::make_shared<const Volume>(std::move(fv.placed.volume)), fv.window,
+            fv.placed.worldLo, std::move(fv.labels)));
         m_volumeKey = key;
         ++m_uploads;
     }

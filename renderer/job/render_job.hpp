@@ -25,6 +25,12 @@ namespace cutaway::job {
 /// spacing override applied. Throws InputError naming the file on failure.
 Volume loadSceneVolume(const Scene& scene);
 
+/// The scene's label volume (/labels), or null without one: read from its
+/// file or made with the phantom, checked against the scan's grid (same dims,
+/// spacing equal to within 0.1 %; /volume/spacing applies to both), with
+/// integer ids >= 0. Throws InputError naming the file on a mismatch.
+std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene, const Volume& scan);
+
 /// The value window: the scene's, else the volume's value range (a flat
 /// volume gets a window of width 1 so normalization stays defined).
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
@@ -35,6 +41,7 @@ bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
 struct FrameVolume {
     operators::PlacedVolume placed;
     bake::ValueWindow window;
+    std::shared_ptr<const Volume> labels; ///< on placed.volume's grid, or null
 };
 FrameVolume frameVolume(const Scene& scene);
 
@@ -72,6 +79,9 @@ public:
     explicit FrameRenderer(const gpu::Context& ctx);
     Image render(const Scene& scene);
     int uploads() const { return m_uploads; } ///< volumes loaded, uploaded and baked so far
+    /// What the renders since the last call derived, one line each (e.g. the
+    /// Otsu threshold of surface alignment and its bake time).
+    std::vector<std::string> takeNotes() { return m_renderer.takeNotes(); }
 
 private:
     const gpu::Context& m_ctx;

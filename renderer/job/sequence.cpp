@@ -94,6 +94,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             }
             if (!renderer) renderer = std::make_unique<FrameRenderer>(ctx);
             Image image = renderer->render(frameScene);
+            event.notes = renderer->takeNotes();
             if (stop()) { // the frame in flight is discarded, never written
                 summary.stopped = true;
                 break;
@@ -104,6 +105,8 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                               {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
                               {"cutaway/version", CUTAWAY_VERSION},
                               {"cutaway/scene", frameScene.document.dump()}};
+            for (std::size_t n = 0; n < event.notes.size(); ++n)
+                exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
             if (!image.operatorIds.empty())
                 exr.channels.push_back({"operator_id", &image.operatorIds});
             createOutputFolder(event.exr);

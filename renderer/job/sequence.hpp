@@ -46,6 +46,7 @@ struct FrameEvent {
     double seconds = 0.0;
     std::string error;     ///< for Failed
     bool badInput = false; ///< Failed because of the scene (exit 2) rather than at run time
+    std::vector<std::string> notes; ///< what this frame derived (thresholds, feature bakes)
 };
 
 struct SequenceOptions {

@@ -1,5 +1,6 @@
 #include "render/gpu_operators.hpp"
 
+#include "shared/feature.h"
 #include "shared/operator_frame.h"
 
 #include <cstring>
@@ -25,6 +26,12 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
     const double scale = (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
     u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), static_cast<float>(index + 3),
                        0.0f, 0.0f); // id code: see slice_common.h
+    const Alignment& al = spec.alignment;
+    const float mode = al.mode == AlignmentMode::Surface   ? CW_ALIGN_SURFACE
+                       : al.mode == AlignmentMode::Segment ? CW_ALIGN_SEGMENT
+                                                           : CW_ALIGN_AXIS;
+    u.align = glm::vec4(mode, static_cast<float>(al.depth), static_cast<float>(al.band),
+                        static_cast<float>(al.band));
     return u;
 }
 
@@ -32,9 +39,9 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
 
 OperatorStack::OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setLayout,
                              VkSampler sampler)
-    : m_ctx(ctx), m_setLayout(setLayout), m_sampler(sampler), m_baker(ctx) {}
+    : m_ctx(ctx), m_setLayout(setLayout), m_sampler(sampler), m_baker(ctx), m_features(ctx) {}
 
-void OperatorStack::update(const std::vector<OperatorSpec>& specs) {
+void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolume& volume) {
     // Deformed bounds depend only on the parameters: keep them while the map is kept.
     std::vector<operators::WorldBox> boxes;
     for (std::size_t i = 0; i < specs.size(); ++i) {
@@ -56,7 +63,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs) {
                                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
             op->set = gpu::allocateDescriptorSet(m_ctx, m_setLayout,
                                                  {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}});
+                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}});
             gpu::writeBufferDescriptor(m_ctx, op->set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                        op->uniforms.buffer.get(), sizeof(shader::OperatorUniforms));
         }
@@ -69,10 +76,15 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs) {
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
             ++m_bakes;
         }
+        const gpu::Image& feature = m_features.fieldFor(spec, volume);
+        gpu::writeImageDescriptor(m_ctx, op->set.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                  feature.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                  m_sampler);
         op->spec = spec;
         const shader::OperatorUniforms u = uniformsOf(spec, op->box, i);
         std::memcpy(op->uniforms.mapped, &u, sizeof u);
     }
+    m_features.keepOnly();
 }
 
 } // namespace cutaway::render

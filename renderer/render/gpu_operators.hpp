@@ -7,6 +7,8 @@
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "operators/operator_geometry.hpp"
+#include "render/feature_fields.hpp"
+#include "render/gpu_volume.hpp"
 #include "scene/scene.hpp"
 
 #include <memory>
@@ -26,18 +28,20 @@ class OperatorStack {
 public:
     OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setLayout, VkSampler sampler);
 
-    /// Makes the device state match `specs`: refuses overlapping operators
-    /// (InputError naming both), bakes what changed.
-    void update(const std::vector<OperatorSpec>& specs);
+    /// Makes the device state match `specs` on `volume`: refuses overlapping
+    /// operators (InputError naming both), bakes what changed.
+    void update(const std::vector<OperatorSpec>& specs, const GpuVolume& volume);
 
     const std::vector<std::unique_ptr<GpuOperator>>& operators() const { return m_operators; }
     int bakes() const { return m_bakes; } ///< maps baked so far, for tests
+    FeatureFields& features() { return m_features; }
 
 private:
     const gpu::Context& m_ctx;
     VkDescriptorSetLayout m_setLayout;
     VkSampler m_sampler;
     bake::OperatorBaker m_baker;
+    FeatureFields m_features;
     std::vector<std::unique_ptr<GpuOperator>> m_operators;
     int m_bakes = 0;
 };

@@ -1,6 +1,7 @@
 #include "render/gpu_volume.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace cutaway::render {
@@ -15,9 +16,12 @@ double GpuVolume::smallestSpacing() const {
 }
 
 GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,
-                        const Volume& volume, bake::ValueWindow window,
-                        std::optional<glm::dvec3> worldLo) {
+                        std::shared_ptr<const Volume> scan, bake::ValueWindow window,
+                        std::optional<glm::dvec3> worldLo, std::shared_ptr<const Volume> labels) {
+    static std::atomic<std::uint64_t> serials{0};
+    const Volume& volume = *scan;
     GpuVolume gv;
+    gv.serial = ++serials;
     gv.dims = volume.dims;
     gv.spacing = volume.spacing;
     gv.window = window;
@@ -25,6 +29,8 @@ GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& bake
     gv.box = Box{lo, lo + volume.extent()};
     gv.values = bake::uploadVolume(ctx, volume, window);
     gv.gradients = baker.bake(gv.values, volume.spacing);
+    gv.scan = std::move(scan);
+    gv.labels = std::move(labels);
     return gv;
 }
 

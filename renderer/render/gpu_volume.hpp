@@ -8,7 +8,9 @@
 #include "render/camera.hpp"
 #include "volume/volume.hpp"
 
+#include <cstdint>
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 
 namespace cutaway::render {
@@ -20,6 +22,13 @@ struct GpuVolume {
     glm::dvec3 spacing{1.0};
     bake::ValueWindow window;
     Box box; ///< world space: centred on the origin, extent dims * spacing
+    /// The volume on the host, kept for what is derived from it per scene:
+    /// segment masks of a value range and Otsu thresholds (feature alignment).
+    std::shared_ptr<const Volume> scan;
+    /// The label volume on the same grid, or null (classification by label,
+    /// segment alignment).
+    std::shared_ptr<const Volume> labels;
+    std::uint64_t serial = 0; ///< unique per prepared volume: what device caches key on
 
     /// World (mm) -> texture coordinates [0,1]^3.
     glm::dmat4 worldToTexture() const;
@@ -28,8 +37,10 @@ struct GpuVolume {
 
 /// Uploads `volume` normalized over `window` and bakes its gradients. Its box
 /// is centred on the world's origin unless `worldLo` places its low corner.
+/// `labels`, if any, must be on the volume's grid (see job::loadSceneLabels).
 GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,
-                        const Volume& volume, bake::ValueWindow window,
-                        std::optional<glm::dvec3> worldLo = std::nullopt);
+                        std::shared_ptr<const Volume> volume, bake::ValueWindow window,
+                        std::optional<glm::dvec3> worldLo = std::nullopt,
+                        std::shared_ptr<const Volume> labels = nullptr);
 
 } // namespace cutaway::render

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "gpu/check.hpp"
+#include "render/label_classes.hpp"
 #include "render/preintegration.hpp"
 #include "render/slice_pipeline.hpp"
 #include "render/slicer.hpp"
@@ -36,28 +37,55 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
         u.lightDir[i] = glm::vec4(glm::vec3(-glm::normalize(lights[i].direction)), 0.0f);
         u.lightColor[i] = glm::vec4(lights[i].color * lights[i].intensity, 0.0f);
     }
+    const bool byLabel = volume.labels && !scene.labelTransfers.empty();
     u.flags = glm::vec4(static_cast<float>(count), s.enabled ? 1.0f : 0.0f,
-                        preintegrated ? 1.0f : 0.0f, 0.0f);
+                        preintegrated ? 1.0f : 0.0f, byLabel ? 1.0f : 0.0f);
     return u;
 }
 
-// The classification table: the 1D transfer function (post-classification) or
-// its pre-integrated 2D table for slabs one slice spacing thick.
+// The classification tables, one layer per transfer function (/transfer, then
+// /transfer/labels): the 1D function (post-classification) or its
+// pre-integrated 2D table for slabs one slice spacing thick.
 gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
                           double sliceMm) {
-    std::vector<glm::vec4> table = tabulateTransfer(scene.transfer, volume.window);
-    uint32_t width = static_cast<uint32_t>(table.size()), height = 1;
-    if (scene.render.classification == Classification::Preintegrated) {
-        table = preintegrate(table, volume.smallestSpacing(), sliceMm);
-        width = height = kPreintegrationSize;
+    std::vector<const TransferFunction*> functions{&scene.transfer};
+    if (volume.labels) {
+        for (const LabelTransfer& t : scene.labelTransfers)
+            functions.push_back(&t.transfer);
     }
-    std::vector<uint64_t> halves(table.size());
-    for (std::size_t i = 0; i < table.size(); ++i)
-        halves[i] = glm::packHalf4x16(table[i]);
+    const bool preintegrated = scene.render.classification == Classification::Preintegrated;
+    const uint32_t width = preintegrated ? kPreintegrationSize : kTransferTableSize;
+    const uint32_t height = preintegrated ? kPreintegrationSize : 1;
+    std::vector<uint64_t> halves;
+    halves.reserve(std::size_t(width) * height * functions.size());
+    for (const TransferFunction* tf : functions) {
+        std::vector<glm::vec4> table = tabulateTransfer(*tf, volume.window);
+        if (preintegrated) table = preintegrate(table, volume.smallestSpacing(), sliceMm);
+        for (const glm::vec4& entry : table)
+            halves.push_back(glm::packHalf4x16(entry));
+    }
     gpu::Image image =
-        gpu::createImage(ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height, 1},
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        gpu::createImageArray(ctx, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height},
+                              static_cast<uint32_t>(functions.size()),
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     gpu::uploadImage(ctx, image, halves.data(), halves.size() * sizeof(uint64_t),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+    return image;
+}
+
+// Each voxel's classification layer (R8_UINT), or a single 0 without labels.
+gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume) {
+    std::vector<std::uint8_t> layers{0};
+    VkExtent3D extent{1, 1, 1};
+    if (volume.labels && !scene.labelTransfers.empty()) {
+        layers = classLayers(*volume.labels, scene.labelTransfers);
+        extent = {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)};
+    }
+    gpu::Image image =
+        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8_UINT, extent,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    gpu::uploadImage(ctx, image, layers.data(), layers.size(),
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
     return image;
@@ -67,15 +95,18 @@ gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const Gpu
 
 SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
     m_sampler = gpu::createLinearSampler(ctx);
+    m_nearest = gpu::createNearestSampler(ctx);
     const auto frag = VK_SHADER_STAGE_FRAGMENT_BIT;
     m_setLayout = gpu::createSetLayout(
         ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | frag, nullptr},
               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
-              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
+              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
+              {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
     m_operatorSetLayout = gpu::createSetLayout(
         ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, frag, nullptr},
-              {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
+              {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
+              {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get(), m_operatorSetLayout.get()});
     m_pipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Background, false);
     m_operatorPipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Operator, false);
@@ -166,7 +197,7 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
 
 Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const int width = scene.render.width, height = scene.render.height;
-    m_operators->update(scene.operators);
+    m_operators->update(scene.operators, volume);
     // Proxies: each operator's deformed box, then the volume (the background).
     // The camera frames them all: a lifted flap may leave the volume's box.
     std::vector<Proxy> proxies;
@@ -195,18 +226,35 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     std::vector<double> transferKey{
         double(scene.render.classification == Classification::Preintegrated), volume.window.lo,
         volume.window.hi, sliceMm, volume.smallestSpacing()};
-    for (const TransferPoint& p : scene.transfer.points)
-        transferKey.insert(transferKey.end(),
-                           {p.value, p.color.x, p.color.y, p.color.z, double(p.alpha)});
+    const auto addPoints = [&](const TransferFunction& tf) {
+        transferKey.push_back(double(tf.points.size()));
+        for (const TransferPoint& p : tf.points)
+            transferKey.insert(transferKey.end(),
+                               {p.value, p.color.x, p.color.y, p.color.z, double(p.alpha)});
+    };
+    addPoints(scene.transfer);
+    // Label layers: which labels take which function, and the label volume.
+    std::vector<double> classKey{double(volume.serial)};
+    if (volume.labels) {
+        for (const LabelTransfer& t : scene.labelTransfers) {
+            addPoints(t.transfer);
+            classKey.push_back(-1.0);
+            classKey.insert(classKey.end(), t.ids.begin(), t.ids.end());
+        }
+    }
     if (!m_transfer.image || transferKey != m_transferKey) {
         m_transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
         m_transferKey = std::move(transferKey);
+    }
+    if (!m_classes.image || classKey != m_classesKey) {
+        m_classes = uploadClasses(m_ctx, scene, volume);
+        m_classesKey = std::move(classKey);
     }
     const gpu::Image& transfer = m_transfer;
 
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
-        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}});
+        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                m_uniforms.buffer.get(), sizeof(uniforms));
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -216,6 +264,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, volume.gradients.view.get(), ro,
                               m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, transfer.view.get(), ro, m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, 4, sampled, m_classes.view.get(), ro,
+                              m_nearest.get());
 
     std::vector<const gpu::Image*> targets{&m_color};
     std::vector<const gpu::Buffer*> readbacks{&m_readback};

@@ -38,6 +38,8 @@ public:
     Image render(const Scene& scene, const GpuVolume& volume);
 
     const FrameStats& lastStats() const { return m_stats; }
+    /// Feature-field bakes since the last call, one line each (see FeatureFields).
+    std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
 
 private:
     void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId);
@@ -47,6 +49,7 @@ private:
 
     const gpu::Context& m_ctx;
     gpu::SamplerHandle m_sampler;
+    gpu::SamplerHandle m_nearest;                       ///< for the integer class texture
     gpu::DescriptorSetLayoutHandle m_setLayout;         ///< set 0: frame
     gpu::DescriptorSetLayoutHandle m_operatorSetLayout; ///< set 1: one operator
     gpu::PipelineLayoutHandle m_layout;
@@ -62,6 +65,8 @@ private:
     gpu::Buffer m_readback;
     gpu::Image m_transfer;             ///< classification table, remade when its inputs change
     std::vector<double> m_transferKey; ///< those inputs (pre-integration costs ~170 ms)
+    gpu::Image m_classes;              ///< each voxel's classification layer (R8_UINT)
+    std::vector<double> m_classesKey;  ///< the volume and the label lists it came from
     gpu::Image m_operatorId;           ///< only while scenes ask for output.operator_id
     gpu::Buffer m_operatorIdReadback;
     FrameStats m_stats;

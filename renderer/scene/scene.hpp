@@ -10,8 +10,10 @@
 #include "volume/volume.hpp"
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -43,6 +45,21 @@ struct TransferPoint {
 /// Below the first point the first point's colour applies, above the last the last's.
 struct TransferFunction {
     std::vector<TransferPoint> points;
+};
+
+/// /transfer/labels/N: the transfer function of the samples whose label is
+/// one of `ids` (classification by label, paper Fig. 6). Needs /labels.
+struct LabelTransfer {
+    std::vector<std::int64_t> ids; ///< label ids, names resolved through /labels/names
+    TransferFunction transfer;
+};
+
+/// /labels: a label volume on the scan's grid (same dims; spacing equal to
+/// within 0.1 %, checked on load), or the phantom's own labels.
+struct LabelSource {
+    std::filesystem::path file;                ///< resolved; empty with `phantom`
+    bool phantom = false;                      ///< /labels/phantom: the phantom's labels
+    std::map<std::string, std::int64_t> names; ///< /labels/names (a phantom's own are added)
 };
 
 enum class Projection { Perspective, Orthographic };
@@ -152,6 +169,24 @@ struct Animation {
 
 enum class OperatorType { Peeler, Retractor, Pliers, Dilator };
 
+/// /operators/N/alignment/mode (paper section 4)
+///   Axis:    every point of the box is operatable (Eq. 6)
+///   Surface: points deeper than `depth` below the object's surface are the
+///            feature and stay (Eq. 3, 4 with M from the distance field, Eq. 9)
+///   Segment: the points of some labels (or of a value range) are the
+///            feature and stay (Eq. 3, 4 with M from the segment, Eq. 10)
+enum class AlignmentMode { Axis, Surface, Segment };
+
+/// /operators/N/alignment
+struct Alignment {
+    AlignmentMode mode = AlignmentMode::Axis;
+    std::optional<double> threshold; ///< surface: object = value > threshold; none = Otsu
+    double depth = 5.0;              ///< surface: tau of Eq. 9, mm below the surface, > 0
+    double band = 2.0; ///< delta of Eq. 9 (surface) / smoothing width of M (segment), mm
+    std::vector<std::int64_t> labels;           ///< segment: label ids of the feature
+    std::optional<std::array<double, 2>> range; ///< segment: [lo, hi] values instead of labels
+};
+
 /// /operators/N: one manipulation operator (paper section 3; docs/operators.md).
 /// Its box is the unit cube [-1, 1]^3 of its local frame, placed in the world
 /// by `localToWorld` (Eq. 8: translate, rotate, scale, or a matrix); the
@@ -161,9 +196,10 @@ struct OperatorSpec {
     OperatorType type = OperatorType::Retractor;
     glm::dmat4 localToWorld{1.0};
     shader::OperatorParams params{};
-    glm::ivec3 resolution{64};  ///< /operators/N/resolution: texels of the baked map per axis
-    double normalBand = 2.0;    ///< /operators/N/normal_band: D of Eq. 7, mm
-    std::string name;           ///< /operators/N/name, for messages; default "operator N (type)"
+    glm::ivec3 resolution{64}; ///< /operators/N/resolution: texels of the baked map per axis
+    double normalBand = 2.0;   ///< /operators/N/normal_band: D of Eq. 7, mm
+    Alignment alignment;       ///< /operators/N/alignment
+    std::string name;          ///< /operators/N/name, for messages; default "operator N (type)"
 };
 
 struct Scene {
@@ -171,7 +207,9 @@ struct Scene {
     std::filesystem::path file;    ///< the scene file, empty when parsed from a string
     std::filesystem::path baseDir; ///< relative paths resolve against this
     VolumeSource volume;
+    std::optional<LabelSource> labels;
     TransferFunction transfer;
+    std::vector<LabelTransfer> labelTransfers; ///< /transfer/labels
     Camera camera;
     Lights lights;
     RenderSettings render;

@@ -130,6 +130,71 @@ void dilator(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
     p.kind.x = CW_OP_DILATOR;
 }
 
+/// /operators/N/alignment: which points of the operator's box may move
+/// (paper section 4; docs/operators.md).
+///
+///  * mode       "axis" | "surface" | "segment", default "axis"
+///               axis: every point (Eq. 6). surface: all but the points deeper
+///               than `depth` below the object's surface. segment: all but the
+///               points of `labels` (or of `range`).
+///  * threshold  number (volume value) or "otsu", default "otsu"; surface only:
+///               voxels with a value above it are the object, the rest background
+///  * depth      number, mm, in (0, 10000], default 5; surface only: tau of Eq. 9
+///  * band       number, mm, in [0, 1000], default 2: surface: delta of Eq. 9,
+///               the band over which normals blend to the feature's; segment:
+///               the width over which the mask M is smoothed (Eq. 10)
+///  * labels     array of label names or ids; segment only, needs /labels
+///  * range      [lo, hi], volume values, lo <= hi; segment only, instead of labels:
+///               the voxels with a value in [lo, hi] are the feature
+Alignment parseAlignment(JsonReader& a, const std::optional<LabelSource>& labels) {
+    Alignment result;
+    const std::string mode = a.string("mode", "axis", {"axis", "surface", "segment"});
+    result.mode = mode == "surface"   ? AlignmentMode::Surface
+                  : mode == "segment" ? AlignmentMode::Segment
+                                      : AlignmentMode::Axis;
+    const auto onlyFor = [&](std::string_view key, std::string_view wanted) {
+        if (mode != wanted && a.has(key))
+            a.error(key, "only with \"mode\": \"" + std::string(wanted) + "\"");
+    };
+    onlyFor("threshold", "surface");
+    onlyFor("depth", "surface");
+    onlyFor("labels", "segment");
+    onlyFor("range", "segment");
+    if (mode == "axis" && a.has("band")) a.error("band", "only with \"surface\" or \"segment\"");
+    if (mode == "axis") return result;
+    result.band = a.number("band", result.band, Range::closed(0.0, 1000.0));
+    if (mode == "surface") {
+        if (const nlohmann::json* t = a.find("threshold")) {
+            if (t->is_string()) {
+                if (t->get<std::string>() != "otsu")
+                    a.expected(a.pointerOf("threshold"), "a number or \"otsu\"", *t);
+            } else {
+                result.threshold = a.number("threshold", Range::closed(-kMaxValue, kMaxValue));
+            }
+        }
+        result.depth = a.number("depth", result.depth, Range::openClosed(0.0, 1.0e4));
+        return result;
+    }
+    const bool hasLabels = a.has("labels"), hasRange = a.has("range");
+    if (hasLabels == hasRange) {
+        a.errorHere(std::string("segment alignment needs exactly one of \"labels\" or "
+                                "\"range\", got ") +
+                    (hasLabels ? "both" : "neither"));
+    }
+    if (hasLabels) {
+        if (const auto ids = readLabelList(a, "labels", labels, true)) result.labels = *ids;
+    }
+    if (hasRange) {
+        if (const auto range = a.numbers("range", 2, 2, Range::closed(-kMaxValue, kMaxValue))) {
+            if ((*range)[0] <= (*range)[1])
+                result.range = std::array<double, 2>{(*range)[0], (*range)[1]};
+            else
+                a.expected(a.pointerOf("range"), "[lo, hi] with lo <= hi", *a.find("range"));
+        }
+    }
+    return result;
+}
+
 } // namespace
 
 /// /operators: an array of manipulation operators, rendered together; their
@@ -138,13 +203,13 @@ void dilator(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
 ///  * type         "peeler" | "retractor" | "pliers" | "dilator", required
 ///  * name         string, default "operator N (TYPE)": used in messages
 ///  * placement    object, required: see parsePlacement
-///  * alignment    object, default {"mode": "axis"}; "surface" and "segment" are
-///                 reserved for a later version
+///  * alignment    object, default {"mode": "axis"}: see parseAlignment
 ///  * params       object, default {}: per type, see above
 ///  * resolution   integer in [8, 256], texels of the baked map per axis, default 64
 ///  * normal_band  number, mm, in [0, 1000], default 2: D of Eq. 7, the band over
 ///                 which normals blend to the cut's normal
-void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators) {
+void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
+                    const std::optional<LabelSource>& labels) {
     root.objects("operators", 0, 8, [&](JsonReader& r, std::size_t index) {
         OperatorSpec op;
         const std::string type =
@@ -154,13 +219,7 @@ void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators) {
         r.object(
             "placement", [&](JsonReader& p) { op.localToWorld = parsePlacement(p, halfSize); },
             true);
-        r.object("alignment", [&](JsonReader& a) {
-            const std::string mode = a.string("mode", "axis", {"axis", "surface", "segment"});
-            if (mode != "axis")
-                a.error("mode", "\"" + mode +
-                                    "\" alignment is not supported yet by this "
-                                    "version of cutaway (only \"axis\")");
-        });
+        r.object("alignment", [&](JsonReader& a) { op.alignment = parseAlignment(a, labels); });
         const auto resolution = r.integer("resolution", 64, 8, 256);
         op.resolution = glm::ivec3(static_cast<int>(resolution));
         op.normalBand = r.number("normal_band", op.normalBand, Range::closed(0.0, 1000.0));

@@ -113,7 +113,8 @@ void parseOutput(JsonReader& reader, OutputSettings& output) {
 ///  * output     object, default: "cutaway_####.exr" next to the scene, half floats
 ///  * animation  object, default: one frame, no tracks (scene_animation.cpp)
 ///  * operators  array, default []: manipulation operators (scene_operators.cpp)
-///  * labels, meshes: reserved for later versions; rejected.
+///  * labels     object, default none: a label volume (scene_labels.cpp)
+///  * meshes: reserved for a later version; rejected.
 Scene parseScene(const nlohmann::json& document, const std::filesystem::path& baseDir,
                  const std::string& source) {
     using namespace scene_detail;
@@ -137,21 +138,45 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
 
     root.object(
         "volume", [&](JsonReader& reader) { parseVolume(reader, scene.volume, baseDir); }, true);
+    root.object("labels", [&](JsonReader& reader) {
+        parseLabels(reader, scene.labels.emplace(), scene.volume, baseDir);
+    });
     scene.transfer = defaultTransfer();
-    root.object("transfer", [&](JsonReader& reader) { parseTransfer(reader, scene.transfer); });
+    root.object("transfer", [&](JsonReader& reader) {
+        parseTransfer(reader, scene.transfer);
+        parseLabelTransfers(reader, scene.labelTransfers, scene.labels);
+    });
     root.object("camera", [&](JsonReader& reader) { parseCamera(reader, scene.camera); });
     root.object("lights", [&](JsonReader& reader) { parseLights(reader, scene.lights); });
     root.object("render", [&](JsonReader& reader) { parseRender(reader, scene.render); });
     root.object("output", [&](JsonReader& reader) { parseOutput(reader, scene.output); });
     root.object("animation", [&](JsonReader& reader) { parseAnimation(reader, scene.animation); });
-    parseOperators(root, scene.operators);
+    parseOperators(root, scene.operators, scene.labels);
+    // Sequential composition resamples the scan but not its labels or masks.
+    if (scene.render.composition == Composition::Sequential && scene.operators.size() > 1) {
+        for (std::size_t i = 0; i < scene.operators.size(); ++i) {
+            const Alignment& a = scene.operators[i].alignment;
+            const std::string at = "/operators/" + std::to_string(i) + "/alignment";
+            if (i + 1 < scene.operators.size() && a.mode != AlignmentMode::Axis)
+                diagnostics.error(at + "/mode",
+                                  "under \"operator_composition\": \"sequential\" only the "
+                                  "last operator may be surface- or segment-aligned");
+            else if (!a.labels.empty())
+                diagnostics.error(at + "/labels",
+                                  "under \"operator_composition\": \"sequential\" the scan is "
+                                  "resampled and its labels no longer match: use \"range\"");
+        }
+        if (!scene.labelTransfers.empty())
+            diagnostics.error("/transfer/labels",
+                              "classification by label needs \"operator_composition\": "
+                              "\"separate\" when there are several operators");
+    }
     // Relative output patterns (the default too) resolve against the scene's folder.
     const std::filesystem::path pattern(scene.output.pattern);
     if (pattern.is_relative() && !baseDir.empty())
         scene.output.pattern = (baseDir / pattern).lexically_normal().string();
 
-    for (const char* key : {"labels", "meshes"})
-        root.reserved(key);
+    root.reserved("meshes");
     root.finish();
     diagnostics.throwIfAny();
 

@@ -17,6 +17,16 @@ inline constexpr double kMaxValue = 1.0e30;     ///< volume values (window, tran
 
 void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem::path& baseDir);
 void parseTransfer(JsonReader& reader, TransferFunction& transfer);
+/// /labels (scene_labels.cpp); `volume` is the parsed /volume (for its phantom).
+void parseLabels(JsonReader& reader, LabelSource& labels, const VolumeSource& volume,
+                 const std::filesystem::path& baseDir);
+/// /transfer/labels, read from the /transfer reader.
+void parseLabelTransfers(JsonReader& reader, std::vector<LabelTransfer>& transfers,
+                         const std::optional<LabelSource>& labels);
+/// A list of label names or ids at `key`, resolved to ids through `labels`.
+std::optional<std::vector<std::int64_t>> readLabelList(JsonReader& reader, std::string_view key,
+                                                       const std::optional<LabelSource>& labels,
+                                                       bool required);
 /// The transfer function used when a scene has no /transfer section.
 TransferFunction defaultTransfer();
 void parseCamera(JsonReader& reader, Camera& camera);
@@ -27,7 +37,9 @@ void parseOutput(JsonReader& reader, OutputSettings& output);
 
 void parseAnimation(JsonReader& reader, Animation& animation);
 /// Reads /operators from the root (an array, so it takes the root reader).
-void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators);
+/// `labels` resolves the label names of segment alignment.
+void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
+                    const std::optional<LabelSource>& labels);
 
 /// Reads a direction: 3 numbers in [-kMaxCoordinate, kMaxCoordinate], not all zero.
 std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required);

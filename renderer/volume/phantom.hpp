@@ -10,11 +10,11 @@
 // bone ~ 200-255). Both phantoms are mirror-symmetric about the plane
 // x = extent.x / 2, exactly on the voxel grid, so a symmetric view gives a
 // symmetric image. Label 0 is background.
+#include "volume/volume.hpp"
+
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "volume/volume.hpp"
 
 namespace cutaway {
 

@@ -13,11 +13,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace cutaway {
 
@@ -31,11 +30,11 @@ std::string_view voxelTypeName(VoxelType type);
 VoxelType parseVoxelType(std::string_view name, std::string_view context);
 
 struct Volume {
-    glm::ivec3 dims{0};          ///< voxels along x, y, z; each >= 1
-    glm::dvec3 spacing{1.0};     ///< millimetres between voxel centres, each > 0 and finite
-    glm::dvec3 origin{0.0};      ///< physical position of voxel (0,0,0), informational
+    glm::ivec3 dims{0};      ///< voxels along x, y, z; each >= 1
+    glm::dvec3 spacing{1.0}; ///< millimetres between voxel centres, each > 0 and finite
+    glm::dvec3 origin{0.0};  ///< physical position of voxel (0,0,0), informational
     VoxelType type = VoxelType::U8;
-    double slope = 1.0;          ///< value = raw * slope + inter
+    double slope = 1.0; ///< value = raw * slope + inter
     double inter = 0.0;
     std::vector<std::byte> data; ///< voxelCount() * voxelSize(type) bytes
 

@@ -16,7 +16,7 @@ void main() {
         back = texture(volumeTex, toTexture(worldPos - toEye * stepMm)).r;
         shadeAt = toTexture(worldPos - toEye * (0.5 * stepMm));
     }
-    vec4 c = classifySlab(front, back, obliquity);
+    vec4 c = classifySlab(front, back, obliquity, classLayer(tc));
     if (c.a <= 0.0) {
         emit(vec4(0.0), 0.0);
         return;

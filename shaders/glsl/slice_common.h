@@ -9,7 +9,11 @@
 layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms u; };
 layout(set = 0, binding = 1) uniform sampler3D volumeTex;
 layout(set = 0, binding = 2) uniform sampler3D gradientTex;
-layout(set = 0, binding = 3) uniform sampler2D transferTex;
+// One classification table per layer: layer 0 is /transfer, layer i + 1
+// /transfer/labels/i. classTex holds each voxel's layer (classification by
+// label; a 1^3 texture of 0 without labels, and u.flags.w = 0).
+layout(set = 0, binding = 3) uniform sampler2DArray transferTex;
+layout(set = 0, binding = 4) uniform usampler3D classTex;
 
 layout(location = 0) out vec4 outColor;
 #ifdef CW_WRITE_ID
@@ -40,15 +44,25 @@ vec3 toEyeFrom(vec3 world) {
 // are u.viewDir.w apart along the view, an oblique ray crosses more material.
 float obliquityOf(vec3 toEye) { return 1.0 / max(dot(-toEye, u.viewDir.xyz), 1e-3); }
 
-// Premultiplied colour of the slab from `front` to `back` (normalized values).
-vec4 classifySlab(float front, float back, float obliquity) {
+// The classification layer of the voxel nearest to texture coordinate tc.
+float classLayer(vec3 tc) {
+    if (u.flags.w < 0.5) return 0.0;
+    ivec3 dims = textureSize(classTex, 0);
+    ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+    return float(texelFetch(classTex, voxel, 0).r);
+}
+
+// Premultiplied colour of the slab from `front` to `back` (normalized values),
+// classified by table `layer`.
+vec4 classifySlab(float front, float back, float obliquity, float layer) {
     if (u.flags.z > 0.5) {
-        vec4 slab = texture(transferTex, vec2(front, back) * u.valueToTf.x + u.valueToTf.y);
+        vec2 at = vec2(front, back) * u.valueToTf.x + u.valueToTf.y;
+        vec4 slab = texture(transferTex, vec3(at, layer));
         if (slab.a <= 0.0) return vec4(0.0);
         float alpha = correctOpacity(slab.a, obliquity); // the table is for an axial slab
         return vec4(slab.rgb * (alpha / slab.a), alpha);
     }
-    vec4 c = texture(transferTex, vec2(front * u.valueToTf.x + u.valueToTf.y, 0.5));
+    vec4 c = texture(transferTex, vec3(front * u.valueToTf.x + u.valueToTf.y, 0.5, layer));
     if (c.a <= 0.0) return vec4(0.0);
     float alpha = correctOpacity(c.a, u.viewDir.w * obliquity / u.valueToTf.z);
     return vec4(c.rgb * alpha, alpha);

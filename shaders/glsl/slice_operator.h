@@ -1,22 +1,27 @@
 // GLSL only: the body of the operator slicing shader (slice_operator.frag.glsl
 // and its _id variant). An operator's proxy (paper section 5.1): the fragment
-// is a point p' of the deformed space. Its pre-image comes from the operator's baked map (Eq. 2,
-// placed by Eq. 8; Eq. 6: outside the volume or in a cut it is empty), the
-// normal is the volume gradient carried through the Jacobian of the map
-// (Eq. 5), blended toward the cut's normal within the band D (Eq. 7).
+// is a point p' of the deformed space. The probe p0 comes from the operator's
+// baked map (Eq. 2, 3, placed by Eq. 8); the feature mask decides between p0,
+// p' and nothing (Eq. 4; axis alignment: Eq. 6). The normal is the volume
+// gradient carried through the Jacobian of the map (Eq. 5), blended with the
+// feature's (Eq. 9, 10) and toward the cut's within the band D (Eq. 7).
 #include "glsl/slice_common.h"
+#include "shared/feature.h"
 #include "shared/operator_frame.h"
 
 layout(location = 0) in vec3 worldPos;
 layout(std140, set = 1, binding = 0) uniform Operator { OperatorUniforms op; };
 layout(set = 1, binding = 1) uniform sampler3D operatorMap;
+// Surface: (unit gradient of DT, DT in mm); segment: (unit gradient of M, M);
+// both over the volume's grid. A 1^3 texture for axis alignment.
+layout(set = 1, binding = 2) uniform sampler3D featureTex;
 
 vec4 mapAt(vec3 local) {
     return texture(operatorMap, (local - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz));
 }
 
-// xyz: the pre-image in the world; w: signed distance to the cut (local units).
-vec4 preimage(vec3 world) {
+// xyz: the probe p0 in the world; w: signed distance to the cut (local units).
+vec4 probe(vec3 world) {
     vec3 q = (op.worldToLocal * vec4(world, 1.0)).xyz;
     vec4 m = mapAt(q);
     return vec4((op.localToWorld * vec4(q + m.xyz, 1.0)).xyz, m.w);
@@ -24,36 +29,98 @@ vec4 preimage(vec3 world) {
 
 bool inVolume(vec3 tc) { return all(greaterThanEqual(tc, vec3(0.0))) && all(lessThanEqual(tc, vec3(1.0))); }
 
+int alignment() { return int(op.align.x + 0.5); }
+
+// M at texture coordinate tc (0 for axis alignment).
+float maskAt(vec3 tc) {
+    int mode = alignment();
+    if (mode == CW_ALIGN_AXIS) return 0.0;
+    vec4 f = texture(featureTex, tc);
+    if (mode == CW_ALIGN_SURFACE) return surfaceMask(f.w, op.align.y, op.align.z);
+    ivec3 dims = textureSize(featureTex, 0);
+    ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+    return segmentMask(f.w, texelFetch(featureTex, voxel, 0).w >= 0.5);
+}
+
+struct Resolved {
+    int which;    // CW_CASE_*
+    vec3 tc;      // texture coordinate of p (transformed or masked)
+    float cutW;   // the map's signed cut distance at p'
+};
+
+// Eq. 3 and 4 for the point p' = world.
+Resolved resolve(vec3 world) {
+    vec4 p0 = probe(world);
+    vec3 tc0 = toTexture(p0.xyz);
+    vec3 tcPrime = toTexture(world);
+    bool p0Valid = p0.w > 0.0 && inVolume(tc0);
+    bool primeIn = inVolume(tcPrime);
+    float m0 = p0Valid ? maskAt(tc0) : 0.0;
+    float mPrime = primeIn ? maskAt(tcPrime) : 0.0;
+    Resolved r;
+    r.which = featureCase(p0Valid, m0, primeIn, mPrime);
+    r.tc = r.which == CW_CASE_MASKED ? tcPrime : tc0;
+    r.cutW = p0.w;
+    return r;
+}
+
+// The source-space gradient at p (data gradient, with Eq. 9 / 10 applied).
+vec4 featureGradient(vec4 g, vec3 tc, bool moved) {
+    int mode = alignment();
+    if (mode == CW_ALIGN_AXIS) return g;
+    vec4 f = texture(featureTex, tc);
+    if (mode == CW_ALIGN_SURFACE) {
+        float beta = surfaceBeta(f.w, op.align.y, op.align.z);
+        if (beta == 0.0) return g;
+        return vec4(surfaceNormal(g.xyz, f.xyz, beta), mix(g.w, 1.0, abs(beta)));
+    }
+    // Segment: only moved points (M < 0.5) change. Near the segment the data
+    // gradient gives way to the segment-aware one (into the segment), which
+    // Eq. 10 turns over as M approaches 0.5.
+    float m = f.w;
+    float gamma = segmentGamma(m);
+    if (!moved || gamma == 0.0) return g;
+    vec3 toward = mix(g.xyz, f.xyz, clamp(2.0 * m, 0.0, 1.0));
+    return vec4(segmentNormal(toward, gamma), mix(g.w, 1.0, clamp(2.0 * m, 0.0, 1.0)));
+}
+
 void main() {
     vec3 toEye = toEyeFrom(worldPos);
     float obliquity = obliquityOf(toEye);
     float stepMm = u.viewDir.w * obliquity;
-    vec4 src = preimage(worldPos);
-    vec3 tc = toTexture(src.xyz);
-    if (src.w <= 0.0 || !inVolume(tc)) { // a cut, an opening, or nothing moved here
+    Resolved front = resolve(worldPos);
+    if (front.which == CW_CASE_EMPTY) { // a cut, an opening, the feature's place, or nothing
         emit(vec4(0.0), 0.0);
         return;
     }
-    float front = texture(volumeTex, tc).r;
-    float back = front;
+    bool masked = front.which == CW_CASE_MASKED;
+    float layer = classLayer(front.tc);
+    float frontValue = texture(volumeTex, front.tc).r;
+    float backValue = frontValue;
     vec3 shadePoint = worldPos; // the slab's middle when pre-integrated, as for the background
     if (u.flags.z > 0.5) {
-        vec4 srcBack = preimage(worldPos - toEye * stepMm);
-        vec3 tcBack = toTexture(srcBack.xyz);
-        if (srcBack.w > 0.0 && inVolume(tcBack)) back = texture(volumeTex, tcBack).r;
+        Resolved back = resolve(worldPos - toEye * stepMm);
+        if (back.which != CW_CASE_EMPTY) backValue = texture(volumeTex, back.tc).r;
         shadePoint = worldPos - toEye * (0.5 * stepMm);
     }
-    vec4 c = classifySlab(front, back, obliquity);
+    vec4 c = classifySlab(frontValue, backValue, obliquity, layer);
     if (c.a <= 0.0) {
         emit(vec4(0.0), 0.0);
         return;
     }
 
+    Resolved middle = resolve(shadePoint);
+    if (middle.which == CW_CASE_EMPTY || (middle.which == CW_CASE_MASKED) != masked)
+        middle = front; // the middle fell elsewhere: shade at the front
+    if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
+        vec4 g = featureGradient(texture(gradientTex, middle.tc), middle.tc, false);
+        vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
+        emit(shade(c, n, toEye), CW_ID_BACKGROUND);
+        return;
+    }
+
     // Jacobian of the continuous backward map and gradient of the cut distance,
     // by central differences over one texel of the map.
-    vec4 srcShade = preimage(shadePoint);
-    if (srcShade.w <= 0.0) srcShade = src; // the middle fell in the cut: use the front
-    vec3 tcShade = toTexture(srcShade.xyz);
     vec3 q = (op.worldToLocal * vec4(shadePoint, 1.0)).xyz;
     float h = op.mapHi.w;
     mat3 jacobian;
@@ -69,10 +136,10 @@ void main() {
     }
     mat3 a = mat3(op.localToWorld);
     mat3 aInvT = transpose(mat3(op.worldToLocal));
-    vec4 g = texture(gradientTex, tcShade);
+    vec4 g = featureGradient(texture(gradientTex, middle.tc), middle.tc, true);
     vec3 carried = aInvT * (transpose(jacobian) * (transpose(a) * g.xyz)); // Eq. 5
     vec3 cut = aInvT * cutGradient; // points into the material
-    float omega = op.band.x > 0.0 ? 1.0 - clamp(srcShade.w / op.band.x, 0.0, 1.0) : 0.0;
+    float omega = op.band.x > 0.0 ? 1.0 - clamp(middle.cutW / op.band.x, 0.0, 1.0) : 0.0;
     vec4 gradient = vec4(dot(carried, carried) > 1e-12 ? normalize(carried) : vec3(0.0), g.w);
     if (omega > 0.0 && dot(cut, cut) > 1e-12) { // Eq. 7
         vec3 blended = mix(gradient.xyz, normalize(cut), omega);

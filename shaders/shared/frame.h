@@ -22,6 +22,7 @@ struct FrameUniforms {
     vec4 lightColor[CW_MAX_LIGHTS]; // rgb: colour * intensity ; w unused
     vec4 flags;                     // x: number of directional lights ; y: shading on (1) / off (0)
                                     // z: 1 pre-integrated table (2D), 0 post-classification (1D)
+                                    // w: 1 classification by label (classTex), 0 one table
 };
 
 CW_NAMESPACE_END

@@ -13,6 +13,8 @@ struct OperatorUniforms {
     vec4 mapLo;        // xyz: local corner of the baked map's domain (the deformed box V'_T)
     vec4 mapHi;        // xyz: opposite corner; w: one texel of the map, local units
     vec4 band;         // x: D of Eq. 7 in local units (0: no blending); y: id code, 3 + index
+    vec4 align;        // x: CW_ALIGN_* (feature.h); y: tau, z: delta (mm, surface);
+                       // w: delta for segment alignment's mask (mm, informational)
 };
 
 // Baking: the push constants of operator_bake.comp.
@@ -29,7 +31,8 @@ struct OperatorBakeParams {
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 3 * 16);
+static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 4 * 16);
+static_assert(offsetof(cutaway::shader::OperatorUniforms, align) == 176);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, mapLo) == 128);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, band) == 160);
 static_assert(sizeof(cutaway::shader::OperatorBakeParams) == 96);

@@ -30,8 +30,8 @@ Scene headScene(int phantomSize, int width, int height) {
 
 Image renderVolume(const gpu::Context& ctx, const Scene& scene, const Volume& volume) {
     bake::GradientBaker baker(ctx);
-    render::GpuVolume gv =
-        render::prepareVolume(ctx, baker, volume, job::sceneWindow(scene, volume));
+    render::GpuVolume gv = render::prepareVolume(ctx, baker, std::make_shared<Volume>(volume),
+                                                 job::sceneWindow(scene, volume));
     render::SliceRenderer renderer(ctx);
     return renderer.render(scene, gv);
 }

@@ -169,8 +169,8 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
 TEST_F(GpuTest, MovingAnOperatorDoesNotRebakeItsMap) {
     const auto volume = job::loadSceneVolume(topView());
     bake::GradientBaker gradients(ctx());
-    const render::GpuVolume gv =
-        render::prepareVolume(ctx(), gradients, volume, job::sceneWindow(topView(), volume));
+    const render::GpuVolume gv = render::prepareVolume(
+        ctx(), gradients, std::make_shared<Volume>(volume), job::sceneWindow(topView(), volume));
     render::SliceRenderer renderer(ctx());
     Scene s = parsedWith(
         R"([{ "type": "retractor", "placement": { "translate": [0, 0, 10], "scale": [20, 20, 20] } }])");

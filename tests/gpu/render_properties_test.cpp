@@ -229,8 +229,8 @@ TEST_F(GpuTest, AReusedRendererFollowsTransferAndSpacingChanges) {
     c.render.sliceSpacing = 0.5;
     const Volume volume = job::loadSceneVolume(a);
     bake::GradientBaker baker(ctx());
-    const render::GpuVolume gv =
-        render::prepareVolume(ctx(), baker, volume, job::sceneWindow(a, volume));
+    const render::GpuVolume gv = render::prepareVolume(
+        ctx(), baker, std::make_shared<Volume>(volume), job::sceneWindow(a, volume));
     render::SliceRenderer reused(ctx());
     reused.render(a, gv);
     const Image b1 = reused.render(b, gv);

@@ -65,8 +65,8 @@ TEST(OperatorScene, BadPlacementsAreReported) {
     EXPECT_NE(
         parseError(
             patched(R"({"operators": [{ "type": "dilator", "placement": { "scale": [10, 10, 10] },
-        "alignment": { "mode": "surface" } }]})"))
-            .find("/operators/0/alignment/mode: \"surface\" alignment is not supported yet"),
+        "alignment": { "mode": "surface", "labels": [1] } }]})"))
+            .find("/operators/0/alignment/labels: only with \"mode\": \"segment\""),
         std::string::npos);
 }
 

@@ -228,7 +228,7 @@ TEST(SceneParser, UnknownKeysSuggestTheClosestKnownKey) {
 }
 
 TEST(SceneParser, ReservedSectionsAreNotSupportedYet) {
-    for (const std::string key : {"labels", "meshes"}) {
+    for (const std::string key : {"meshes"}) {
         json document = minimalScene();
         document[key] = json::object();
         EXPECT_EQ(parseError(document),

@@ -1,0 +1,73 @@
+#pragma once
+// The compute bakes of feature alignment (paper sections 4.2 and 4.3), and
+// their CPU twins:
+//   distance field DT (surface alignment): exact Euclidean distance in mm from
+//     each object voxel to the nearest background voxel, with its gradient;
+//   segment mask M (segment alignment): the segment indicator smoothed by a
+//     Gaussian and encoded so that M >= 0.5 exactly at the segment's voxels.
+// Both are RGBA16F 3D textures: xyz = unit gradient (toward increasing value,
+// i.e. into the object or segment), w = the field. See shaders/shared/feature_bake.h.
+#include "gpu/context.hpp"
+#include "gpu/handle.hpp"
+#include "gpu/pipeline.hpp"
+#include "gpu/resources.hpp"
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace cutaway::bake {
+
+class FeatureBaker {
+public:
+    explicit FeatureBaker(const gpu::Context& ctx);
+
+    /// Surface alignment: the distance field DT. `values` is the uploaded volume
+    /// texture (R16_UNORM, 3D, SHADER_READ_ONLY_OPTIMAL; see bake/volume_upload.hpp).
+    /// A voxel is object when its normalized value > `threshold` (0..1), else background.
+    /// Result: RGBA16F, same extent, SHADER_READ_ONLY_OPTIMAL, usage SAMPLED | STORAGE |
+    /// TRANSFER_SRC.
+    ///   w   = exact Euclidean distance in mm from the voxel centre to the nearest
+    ///         background voxel centre (0 for background; 65504, the largest half, when
+    ///         there is no background voxel at all); anisotropic spacing honoured;
+    ///   xyz = unit gradient of DT by central differences (into the object), zero where flat.
+    /// Throws InputError when a side is longer than 1024 voxels.
+    gpu::Image distanceField(const gpu::Image& values, glm::dvec3 spacing, float threshold) const;
+
+    /// Segment alignment: the smoothed feature mask M. `indicator` has one byte per
+    /// voxel (x fastest), non-zero inside the segment of interest. It is smoothed by a
+    /// separable Gaussian of sigma = bandMm / 2 mm (per axis sigma / spacing voxels;
+    /// radius ceil(3 sigma) voxels, at most 32; bandMm == 0: no smoothing), borders
+    /// clamped. Result as for distanceField:
+    ///   w   = maskEncode(s, inside) of shared/feature_bake.h, s the smoothed indicator:
+    ///         max(s, 0.5) inside, min(s, 0.498) outside;
+    ///   xyz = unit gradient of s by central differences (into the segment), zero where flat.
+    gpu::Image segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
+                           glm::dvec3 spacing, double bandMm) const;
+
+private:
+    /// A set with every binding written: 0 `texture` (sampled), 1 `src`, 2 `dst`
+    /// (r32f storage), 3 `out` (rgba16f storage), all but `texture` in GENERAL.
+    gpu::DescriptorSet makeSet(const gpu::Image& texture, const gpu::Image& src,
+                               const gpu::Image& dst, const gpu::Image& out) const;
+
+    const gpu::Context& m_ctx;
+    gpu::DescriptorSetLayoutHandle m_setLayout;
+    gpu::PipelineLayoutHandle m_layout;
+    gpu::PipelineHandle m_lines;
+    gpu::PipelineHandle m_envelope;
+    gpu::PipelineHandle m_blur;
+    gpu::PipelineHandle m_finish;
+    gpu::SamplerHandle m_sampler;
+};
+
+/// The distance field's w on the CPU (same definition; `object` non-zero = object),
+/// by the same exact separable transform in double precision. Millimetres.
+std::vector<float> distanceFieldCpu(const std::vector<uint8_t>& object, glm::ivec3 dims,
+                                    glm::dvec3 spacing);
+
+/// The segment mask's w on the CPU (same smoothing and encoding as segmentMask).
+std::vector<float> smoothMaskCpu(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
+                                 glm::dvec3 spacing, double bandMm);
+
+} // namespace cutaway::bake

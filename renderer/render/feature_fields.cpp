@@ -1,0 +1,123 @@
+#include "render/feature_fields.hpp"
+
+#include "core/error.hpp"
+#include "render/label_classes.hpp"
+#include "volume/otsu.hpp"
+#include "volume/segmentation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+
+namespace cutaway::render {
+namespace {
+
+std::string number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", v);
+    return text;
+}
+
+} // namespace
+
+FeatureFields::FeatureFields(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx) {
+    m_none = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16G16B16A16_SFLOAT, {1, 1, 1},
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    const uint64_t zero = 0;
+    gpu::uploadImage(ctx, m_none, &zero, sizeof zero, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+}
+
+double FeatureFields::threshold(const Alignment& alignment, const GpuVolume& volume) {
+    if (alignment.threshold) return *alignment.threshold;
+    if (m_serial != volume.serial) m_otsu.reset();
+    if (!m_otsu) m_otsu = otsuThreshold(*volume.scan);
+    return *m_otsu;
+}
+
+const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVolume& volume) {
+    const Alignment& a = spec.alignment;
+    if (a.mode == AlignmentMode::Axis) return m_none;
+    if (m_serial != volume.serial) { // another volume: nothing kept applies
+        m_fields.clear();
+        m_used.clear();
+        m_otsu.reset();
+        m_serial = volume.serial;
+    }
+    std::ostringstream key;
+    key.precision(17);
+    std::string note;
+    if (a.mode == AlignmentMode::Surface) {
+        const double t = threshold(a, volume);
+        key << "surface " << t;
+        note = "distance field of the object above " + number(t) +
+               (a.threshold ? "" : " (Otsu's threshold)");
+    } else {
+        key << "segment " << a.band;
+        if (a.range) {
+            key << " range " << (*a.range)[0] << ' ' << (*a.range)[1];
+            note = "segment mask of values in [" + number((*a.range)[0]) + ", " +
+                   number((*a.range)[1]) + "]";
+        } else {
+            key << " labels";
+            note = "segment mask of labels";
+            for (const std::int64_t id : a.labels) {
+                key << ' ' << id;
+                note += ' ';
+                note += std::to_string(id);
+            }
+        }
+    }
+    const std::string k = key.str();
+    m_used[k] = true;
+    auto found = m_fields.find(k);
+    if (found != m_fields.end()) return found->second;
+
+    const auto start = std::chrono::steady_clock::now();
+    gpu::Image field;
+    if (a.mode == AlignmentMode::Surface) {
+        // The object: above the threshold, or enclosed by it (segmentation.hpp).
+        const std::vector<std::uint8_t> object = objectMask(*volume.scan, threshold(a, volume));
+        Volume mask = Volume::allocate(volume.dims, VoxelType::U8, volume.spacing);
+        std::memcpy(mask.data.data(), object.data(), object.size());
+        const gpu::Image objectTexture = bake::uploadVolume(m_ctx, mask, {0.0, 1.0});
+        field = m_baker.distanceField(objectTexture, volume.spacing, 0.5f);
+    } else {
+        std::vector<std::uint8_t> indicator;
+        if (a.range) {
+            indicator = rangeIndicator(*volume.scan, (*a.range)[0], (*a.range)[1]);
+        } else {
+            if (!volume.labels)
+                throw InputError(spec.name + ": segment alignment by labels needs a label volume");
+            indicator = labelIndicator(*volume.labels, a.labels);
+        }
+        if (std::find(indicator.begin(), indicator.end(), 1) == indicator.end())
+            throw InputError(spec.name + ": the segment of its alignment is empty (no voxel " +
+                             (a.range ? "has a value in the range" : "has one of the labels") +
+                             ")");
+        field = m_baker.segmentMask(indicator, volume.dims, volume.spacing, a.band);
+    }
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    m_notes.push_back(spec.name + ": " + note + ", baked in " + number(seconds) + " s");
+    ++m_bakes;
+    return m_fields.emplace(k, std::move(field)).first->second;
+}
+
+void FeatureFields::keepOnly() {
+    for (auto it = m_fields.begin(); it != m_fields.end();) {
+        if (m_used.count(it->first))
+            ++it;
+        else
+            it = m_fields.erase(it);
+    }
+    m_used.clear();
+}
+
+std::vector<std::string> FeatureFields::takeNotes() {
+    return std::exchange(m_notes, {});
+}
+
+} // namespace cutaway::render

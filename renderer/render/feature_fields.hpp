@@ -1,0 +1,50 @@
+#pragma once
+// The feature textures of aligned operators (paper sections 4.2, 4.3): the
+// distance field of surface alignment, the smoothed mask of segment
+// alignment. Each is baked the first time an operator needs it and kept while
+// the volume and the inputs it came from (threshold; labels or range, band)
+// stay the same, so moving or animating an operator does not bake again.
+#include "bake/feature_bake.hpp"
+#include "render/gpu_volume.hpp"
+#include "scene/scene.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cutaway::render {
+
+class FeatureFields {
+public:
+    explicit FeatureFields(const gpu::Context& ctx);
+
+    /// The texture `spec`'s alignment reads: RGBA16F over the volume's grid
+    /// (surface: gradient and DT in mm; segment: gradient and M), or a 1^3
+    /// texture for axis alignment. Valid until the next call of keepOnly.
+    const gpu::Image& fieldFor(const OperatorSpec& spec, const GpuVolume& volume);
+
+    /// Frees the fields not asked for since the last call (call once per frame).
+    void keepOnly();
+
+    /// The background threshold surface alignment used, in the volume's
+    /// values: the scene's, or Otsu's (computed once per volume).
+    double threshold(const Alignment& alignment, const GpuVolume& volume);
+
+    /// One line per field baked since the last call, e.g. "surface alignment:
+    /// distance field at threshold 0.2 (Otsu), 0.31 s".
+    std::vector<std::string> takeNotes();
+    int bakes() const { return m_bakes; }
+
+private:
+    const gpu::Context& m_ctx;
+    bake::FeatureBaker m_baker;
+    gpu::Image m_none;
+    std::uint64_t m_serial = 0;
+    std::optional<double> m_otsu;
+    std::map<std::string, gpu::Image> m_fields;
+    std::map<std::string, bool> m_used;
+    std::vector<std::string> m_notes;
+    int m_bakes = 0;
+};
+
+} // namespace cutaway::render

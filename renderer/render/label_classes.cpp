@@ -1,0 +1,84 @@
+#include "render/label_classes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace cutaway::render {
+namespace {
+
+// Maps label ids to bytes: a dense table over the ids that occur when their
+// span is small (FreeSurfer ids reach ~14000), a hash map otherwise.
+class LabelLookup {
+public:
+    LabelLookup(const Volume& labels, const std::unordered_map<std::int64_t, std::uint8_t>& map)
+        : m_map(map) {
+        const ValueRange range = valueRange(labels);
+        m_lo = static_cast<std::int64_t>(std::llround(range.min));
+        const std::int64_t span = static_cast<std::int64_t>(std::llround(range.max)) - m_lo + 1;
+        if (span > 0 && span <= (1 << 24)) {
+            m_dense.assign(static_cast<std::size_t>(span), 0);
+            for (const auto& [id, value] : map) {
+                if (id >= m_lo && id - m_lo < span)
+                    m_dense[static_cast<std::size_t>(id - m_lo)] = value;
+            }
+        }
+    }
+    std::uint8_t operator()(double raw) const {
+        const std::int64_t id = static_cast<std::int64_t>(std::llround(raw));
+        if (!m_dense.empty()) {
+            const std::int64_t at = id - m_lo;
+            return at >= 0 && at < static_cast<std::int64_t>(m_dense.size())
+                       ? m_dense[static_cast<std::size_t>(at)]
+                       : 0;
+        }
+        const auto found = m_map.find(id);
+        return found == m_map.end() ? 0 : found->second;
+    }
+
+private:
+    const std::unordered_map<std::int64_t, std::uint8_t>& m_map;
+    std::int64_t m_lo = 0;
+    std::vector<std::uint8_t> m_dense;
+};
+
+std::vector<std::uint8_t> mapLabels(const Volume& labels,
+                                    const std::unordered_map<std::int64_t, std::uint8_t>& map) {
+    const LabelLookup lookup(labels, map);
+    std::vector<std::uint8_t> out(labels.voxelCount());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = lookup(labels.value(i));
+    return out;
+}
+
+} // namespace
+
+std::vector<std::uint8_t> classLayers(const Volume& labels,
+                                      const std::vector<LabelTransfer>& transfers) {
+    std::unordered_map<std::int64_t, std::uint8_t> map;
+    const std::size_t count = std::min<std::size_t>(transfers.size(), 255);
+    for (std::size_t i = 0; i < count; ++i) {
+        for (const std::int64_t id : transfers[i].ids)
+            map.emplace(id, static_cast<std::uint8_t>(i + 1)); // the first entry wins
+    }
+    return mapLabels(labels, map);
+}
+
+std::vector<std::uint8_t> labelIndicator(const Volume& labels,
+                                         const std::vector<std::int64_t>& ids) {
+    std::unordered_map<std::int64_t, std::uint8_t> map;
+    for (const std::int64_t id : ids)
+        map[id] = 1;
+    return mapLabels(labels, map);
+}
+
+std::vector<std::uint8_t> rangeIndicator(const Volume& scan, double lo, double hi) {
+    std::vector<std::uint8_t> out(scan.voxelCount());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const double v = scan.value(i);
+        out[i] = v >= lo && v <= hi ? 1 : 0;
+    }
+    return out;
+}
+
+} // namespace cutaway::render

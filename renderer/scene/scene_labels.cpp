@@ -1,0 +1,148 @@
+// The /labels section, label references ("skull" or 2) used by /transfer/labels
+// and segment alignment, and /transfer/labels itself.
+#include "scene/scene_sections.hpp"
+
+#include <system_error>
+
+namespace cutaway::scene_detail {
+
+namespace {
+
+// The label names of the phantoms (volume/phantom.cpp); repeated here so the
+// scene library does not link the volume library. Keep the lists in step.
+const std::map<std::string, std::int64_t>& phantomLabelNames(const std::string& phantom) {
+    static const std::map<std::string, std::int64_t> head{{"skin", 1}, {"skull", 2}, {"brain", 3}};
+    static const std::map<std::string, std::int64_t> orange{
+        {"rind", 1}, {"pith", 2}, {"segments", 3}};
+    static const std::map<std::string, std::int64_t> none;
+    return phantom == "head" ? head : phantom == "orange" ? orange : none;
+}
+
+} // namespace
+
+/// /labels: a label volume, for classification by label (/transfer/labels)
+/// and segment alignment. Exactly one of `file` or `phantom`.
+///
+///  * file     string, path: a .nrrd, .nhdr, .nii or .nii.gz label volume of
+///             integer ids (any integer type; ids beyond 255 work) on the
+///             scan's grid: same dims, same spacing to within 0.1 % (checked on load)
+///  * phantom  true: the phantom's own labels (only with /volume/phantom);
+///             their names come with them: head: skin 1, skull 2, brain 3;
+///             orange: rind 1, pith 2, segments 3
+///  * names    object, default {}: name -> id (an integer in [0, 2^31 - 1]),
+///             so the scene can say "skull" where it means 2
+void parseLabels(JsonReader& reader, LabelSource& labels, const VolumeSource& volume,
+                 const std::filesystem::path& baseDir) {
+    const bool hasFile = reader.has("file");
+    const bool hasPhantom = reader.has("phantom");
+    if (hasFile == hasPhantom) {
+        reader.errorHere(std::string("expected exactly one of \"file\" or \"phantom\", got ") +
+                         (hasFile ? "both" : "neither"));
+    }
+    if (const auto file = reader.string("file")) {
+        const std::filesystem::path path = (baseDir / *file).lexically_normal();
+        labels.file = path;
+        std::error_code ec;
+        const auto status = std::filesystem::status(path, ec);
+        if (!std::filesystem::exists(status))
+            reader.error("file", "no such file: " + path.string());
+        else if (!std::filesystem::is_regular_file(status))
+            reader.error("file", "not a regular file: " + path.string());
+    }
+    if (hasPhantom) {
+        labels.phantom = reader.boolean("phantom", false);
+        if (!labels.phantom)
+            reader.error("phantom", "expected true (or leave it out and give \"file\")");
+        else if (volume.phantom.empty())
+            reader.error("phantom", "the volume is not a phantom: give the label \"file\"");
+        else
+            labels.names = phantomLabelNames(volume.phantom);
+    }
+    if (const nlohmann::json* names = reader.find("names")) {
+        if (!names->is_object()) {
+            reader.expected(reader.pointerOf("names"), "an object of name: id", *names);
+        } else {
+            for (const auto& [name, id] : names->items()) {
+                const std::string pointer =
+                    reader.pointerOf("names") + "/" + escapePointerToken(name);
+                if (name.empty()) {
+                    reader.diagnostics().error(pointer, "a label name must not be empty");
+                    continue;
+                }
+                if (const auto value = reader.asInteger(id, pointer, 0, 2147483647))
+                    labels.names[name] = *value;
+            }
+        }
+    }
+}
+
+/// A list of label references at `key`: ids (integers >= 0) or names from
+/// /labels/names. Reports unknown names with the closest known one.
+std::optional<std::vector<std::int64_t>> readLabelList(JsonReader& reader, std::string_view key,
+                                                       const std::optional<LabelSource>& labels,
+                                                       bool required) {
+    const nlohmann::json* list = reader.find(key);
+    if (!list) {
+        if (required) reader.error(key, "missing: a list of label names or ids");
+        return std::nullopt;
+    }
+    const std::string pointer = reader.pointerOf(key);
+    if (!labels) {
+        reader.diagnostics().error(pointer,
+                                   "labels need a /labels section (a label volume) in the scene");
+        return std::nullopt;
+    }
+    if (!list->is_array() || list->empty() || list->size() > 4096) {
+        reader.expected(pointer, "a non-empty array of label names or ids", *list);
+        return std::nullopt;
+    }
+    std::vector<std::int64_t> ids;
+    std::vector<std::string> known;
+    for (const auto& [name, id] : labels->names)
+        known.push_back(name);
+    bool ok = true;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+        const nlohmann::json& item = (*list)[i];
+        const std::string at = pointer + "/" + std::to_string(i);
+        if (item.is_string()) {
+            const auto found = labels->names.find(item.get<std::string>());
+            if (found != labels->names.end()) {
+                ids.push_back(found->second);
+                continue;
+            }
+            std::string message = "unknown label name " + describeValue(item);
+            if (const auto close = closestMatch(item.get<std::string>(), known))
+                message += " (did you mean \"" + *close + "\"?)";
+            else if (known.empty())
+                message += " (/labels/names names none)";
+            reader.diagnostics().error(at, message);
+            ok = false;
+        } else if (const auto id = reader.asInteger(item, at, 0, 2147483647)) {
+            ids.push_back(*id);
+        } else {
+            ok = false;
+        }
+    }
+    if (!ok) return std::nullopt;
+    return ids;
+}
+
+/// /transfer/labels: an array of objects, each a transfer function for some labels.
+///
+///  * labels  array of label names or ids, required
+///  * points  array of at least 2 control points, as /transfer/points, required
+///
+/// A sample is classified by the transfer function of its voxel's label
+/// (nearest voxel); labels not listed use /transfer/points. A label listed
+/// twice takes the first entry's function.
+void parseLabelTransfers(JsonReader& reader, std::vector<LabelTransfer>& transfers,
+                         const std::optional<LabelSource>& labels) {
+    reader.objects("labels", 1, 254, [&](JsonReader& entry, std::size_t) {
+        LabelTransfer result;
+        if (const auto ids = readLabelList(entry, "labels", labels, true)) result.ids = *ids;
+        parseTransfer(entry, result.transfer);
+        transfers.push_back(std::move(result));
+    });
+}
+
+} // namespace cutaway::scene_detail

@@ -1,0 +1,68 @@
+#version 460
+// Distance field, passes 2 and 3 (paper section 4.2): one invocation per line
+// along params.axis (y, then z). Each output is the minimum over the line of
+// f(q) + (spacing * (p - q))^2, found exactly as the lower envelope of those
+// parabolas (Felzenszwalb and Huttenlocher). Entries >= kEdtInfinite take no
+// part; a line with no finite entry stays kEdtFar. See shared/feature_bake.h.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/feature_bake.h"
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(set = 0, binding = 1, r32f) uniform readonly image3D srcImage;
+layout(set = 0, binding = 2, r32f) uniform writeonly image3D dstImage;
+layout(push_constant) uniform Push { FeatureBakeParams params; };
+
+int v[kEdtMaxLine];      // abscissae of the parabolas in the envelope
+float fv[kEdtMaxLine];   // their values f(v[k])
+float z[kEdtMaxLine + 1]; // parabola k is lowest on [z[k], z[k + 1]]
+
+ivec3 voxel(int i, ivec2 uv) {
+    if (params.axis == 0) return ivec3(i, uv.x, uv.y);
+    if (params.axis == 1) return ivec3(uv.x, i, uv.y);
+    return ivec3(uv.x, uv.y, i);
+}
+
+void main() {
+    ivec3 dims = params.dims;
+    int a = params.axis;
+    ivec2 across = a == 0 ? dims.yz : (a == 1 ? dims.xz : dims.xy);
+    ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
+    if (uv.x >= across.x || uv.y >= across.y) return;
+    int n = dims[a];
+    float w2 = params.spacing[a] * params.spacing[a];
+
+    int k = -1;
+    for (int q = 0; q < n; ++q) {
+        float f = imageLoad(srcImage, voxel(q, uv)).r;
+        if (f >= kEdtInfinite) continue;
+        if (k < 0) {
+            k = 0;
+            v[0] = q;
+            fv[0] = f;
+            z[0] = -kEdtFar;
+            z[1] = kEdtFar;
+            continue;
+        }
+        float s = parabolaIntersection(f, q, fv[k], v[k], w2);
+        while (s <= z[k]) { // z[0] = -kEdtFar: never pops the first parabola
+            --k;
+            s = parabolaIntersection(f, q, fv[k], v[k], w2);
+        }
+        ++k;
+        v[k] = q;
+        fv[k] = f;
+        z[k] = s;
+        z[k + 1] = kEdtFar;
+    }
+
+    if (k < 0) {
+        for (int p = 0; p < n; ++p) imageStore(dstImage, voxel(p, uv), vec4(kEdtFar));
+        return;
+    }
+    k = 0;
+    for (int p = 0; p < n; ++p) {
+        while (z[k + 1] < float(p)) ++k;
+        float d = float(p - v[k]);
+        imageStore(dstImage, voxel(p, uv), vec4(w2 * d * d + fv[k]));
+    }
+}

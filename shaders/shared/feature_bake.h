@@ -1,0 +1,92 @@
+// The feature-alignment bakes (paper sections 4.2 and 4.3), shared by their
+// compute shaders and the CPU twins in bake/feature_bake.cpp.
+//
+// Distance field DT: an exact Euclidean distance transform done separably
+// (Meijster et al.; Felzenszwalb and Huttenlocher): edt_lines finds, along x,
+// the squared distance to the nearest background voxel; edt_envelope then
+// takes, along y and then z, the lower envelope of the parabolas
+// f(q) + (spacing * (p - q))^2. Squared distances are in mm^2 and kEdtFar
+// stands for "no background on this line" (+infinity).
+//
+// Mask M: the segment indicator smoothed by a separable Gaussian (mask_blur,
+// one axis per pass), then encoded by maskEncode.
+//
+// field_finish turns either field into the RGBA16F texel:
+// xyz = unit gradient by central differences (toward increasing value), w = value.
+#ifndef CUTAWAY_FEATURE_BAKE_H
+#define CUTAWAY_FEATURE_BAKE_H
+
+#include "shared/glsl_cpp.h"
+
+CW_NAMESPACE_BEGIN
+
+#ifdef __cplusplus
+using glm::exp;
+#endif
+
+// Longest line the distance transform handles (the envelope's private arrays).
+const int kEdtMaxLine = 1024;
+// Squared distance standing for +infinity; anything >= kEdtInfinite is infinite.
+const float kEdtFar = 1.0e20f;
+const float kEdtInfinite = 1.0e19f;
+// Largest finite half float: the distance stored when there is no background at all.
+const float kHalfMax = 65504.0f;
+// Largest Gaussian kernel radius, voxels.
+const int kBlurMaxRadius = 32;
+
+// Push constants of every feature bake pass (64 bytes, std430 layout).
+struct FeatureBakeParams {
+    ivec3 dims;          // voxels
+    int axis;            // edt_envelope, mask_blur: the axis of the lines (0 x, 1 y, 2 z)
+    vec3 spacing;        // mm between voxel centres
+    float threshold;     // edt_lines: normalized value above which a voxel is object
+    vec3 halfInvSpacing; // field_finish: 1 / (2 spacing), 1/mm
+    float sigma;         // mask_blur: Gaussian sigma in voxels along `axis` (0: copy)
+    int radius;          // mask_blur: kernel radius in voxels, <= kBlurMaxRadius
+    int mode;            // field_finish: 0 distance, 1 mask; mask_blur: 1 reads the indicator
+    int pad0;
+    int pad1;
+};
+
+// Unnormalized Gaussian weight of the tap at offset i (voxels).
+CW_FUNC float gaussianWeight(int i, float sigma) {
+    if (sigma <= 0.0f) return i == 0 ? 1.0f : 0.0f;
+    float t = float(i) / sigma;
+    return exp(-0.5f * t * t);
+}
+
+// Intersection (abscissa) of the parabolas f(q) + w2 (p - q)^2 and
+// f(r) + w2 (p - r)^2, r < q; w2 = spacing^2.
+CW_FUNC float parabolaIntersection(float fq, int q, float fr, int r, float w2) {
+    return ((fq - fr) / w2 + float(q * q - r * r)) / (2.0f * float(q - r));
+}
+
+// DT in mm from a squared distance in mm^2 (kHalfMax when infinite or huge).
+CW_FUNC float distanceFromSquared(float d2) {
+    return min(sqrt(d2), kHalfMax);
+}
+
+// M from the smoothed indicator s: >= 0.5 exactly at the segment's voxels, so
+// nearest-voxel lookups agree with the segmentation and the trilinear field
+// crosses 0.5 between inside and outside voxels.
+CW_FUNC float maskEncode(float s, bool inside) {
+    return inside ? max(s, 0.5f) : min(s, 0.498f);
+}
+
+// Unit vector, or zero where the difference vanishes.
+CW_FUNC vec3 unitOrZero(vec3 g) {
+    float len = length(g);
+    if (len < 1e-12f) return vec3(0.0f);
+    return g / len;
+}
+
+CW_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(sizeof(cutaway::shader::FeatureBakeParams) == 64);
+static_assert(offsetof(cutaway::shader::FeatureBakeParams, spacing) == 16);
+static_assert(offsetof(cutaway::shader::FeatureBakeParams, halfInvSpacing) == 32);
+static_assert(offsetof(cutaway::shader::FeatureBakeParams, radius) == 48);
+#endif
+
+#endif
