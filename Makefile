@@ -1,11 +1,12 @@
 # The README's two commands, plus a few conveniences.
 #   make demo   install what is missing, build, render the default scene (EXR + PNG)
 #   make test   install what is missing, build, run the whole test suite with ctest
+#   make bench  bake times at 256^3 (a table; the Table 1 frame benchmark comes later)
 BUILD ?= build
 JOBS ?= $(shell nproc)
 BUILD_TYPE ?= Release
 
-.PHONY: all deps configure build demo test clean format
+.PHONY: all deps configure build demo test bench clean format
 
 all: build
 
@@ -26,6 +27,10 @@ demo: configure
 
 test: build
 	@ctest --test-dir $(BUILD) --output-on-failure --timeout 900 -j $(JOBS)
+
+bench: configure
+	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_bench_bake
+	@$(BUILD)/bench/cutaway_bench_bake 256 3
 
 format:
 	@git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i
