@@ -101,7 +101,9 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    m_notes.push_back(spec.name + ": " + note + ", baked in " + number(seconds) + " s");
+    char took[32];
+    std::snprintf(took, sizeof took, "%.2f", seconds);
+    m_notes.push_back(spec.name + ": " + note + ", baked in " + took + " s");
     ++m_bakes;
     return m_fields.emplace(k, std::move(field)).first->second;
 }

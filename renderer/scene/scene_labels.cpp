@@ -11,9 +11,10 @@ namespace {
 // The label names of the phantoms (volume/phantom.cpp); repeated here so the
 // scene library does not link the volume library. Keep the lists in step.
 const std::map<std::string, std::int64_t>& phantomLabelNames(const std::string& phantom) {
-    static const std::map<std::string, std::int64_t> head{{"skin", 1}, {"skull", 2}, {"brain", 3}};
+    static const std::map<std::string, std::int64_t> head{
+        {"background", 0}, {"skin", 1}, {"skull", 2}, {"brain", 3}};
     static const std::map<std::string, std::int64_t> orange{
-        {"rind", 1}, {"pith", 2}, {"segments", 3}};
+        {"background", 0}, {"rind", 1}, {"pith", 2}, {"segments", 3}};
     static const std::map<std::string, std::int64_t> none;
     return phantom == "head" ? head : phantom == "orange" ? orange : none;
 }

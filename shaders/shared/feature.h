@@ -73,7 +73,10 @@ CW_FUNC vec3 segmentNormal(vec3 transformed, float gamma) {
 
 // Section 4.3: for segmented data a neighbour counts 1 when it belongs to the
 // segment of interest and 0 otherwise (another segment, or empty), so the
-// gradient points into the segment on both sides of its boundary.
+// gradient points into the segment on both sides of its boundary. The bake
+// (feature_bake.h) takes these values smoothed by the segment's band, and the
+// shader reads the gradient of that field; the unsmoothed difference below is
+// the definition the tests check the property against.
 CW_FUNC float segmentValue(bool inSegmentOfInterest) { return inSegmentOfInterest ? 1.0f : 0.0f; }
 
 // Central difference of segment values along one axis (mm spacing).

@@ -174,6 +174,33 @@ const std::map<std::string, std::string> kBadScenes = {
      ": /operators/0/params/displacement: expected |displacement| * 1.72 / radius < 0.95"},
     {"37-operator-angle-string.json",
      ": /operators/1/params/angle: expected a number in [0, 180], got \"90deg\""},
+    {"38-label-name-unknown.json",
+     ": /operators/0/alignment/labels/0: unknown label name \"skul\" (did you mean \"skull\"?)"},
+    {"39-segment-without-labels-section.json",
+     ": /operators/0/alignment/labels: labels need a /labels section (a label volume)"},
+    {"40-segment-labels-and-range.json",
+     ": /operators/0/alignment: segment alignment needs exactly one of \"labels\" or \"range\", "
+     "got both"},
+    {"41-threshold-not-otsu.json",
+     ": /operators/0/alignment/threshold: expected a number or \"otsu\", got \"auto\""},
+    {"42-alignment-depth-zero.json",
+     ": /operators/0/alignment/depth: expected a number in (0, 10000], got 0"},
+    {"43-phantom-labels-with-file-volume.json",
+     ": /labels/phantom: the volume is not a phantom: give the label \"file\""},
+    {"44-depth-with-segment-mode.json",
+     ": /operators/0/alignment/depth: only with \"mode\": \"surface\""},
+    {"45-transfer-labels-without-labels.json",
+     ": /transfer/labels/0/labels: labels need a /labels section (a label volume)"},
+    {"46-segment-range-reversed.json",
+     ": /operators/0/alignment/range: expected [lo, hi] with lo <= hi, got [250,200]"},
+    {"47-sequential-segment-by-labels.json",
+     ": /operators/1/alignment/labels: under \"operator_composition\": \"sequential\" the scan "
+     "is resampled and its labels no longer match: use \"range\""},
+    {"48-label-file-missing.json", ": /labels/file: no such file: "},
+    {"49-label-id-negative.json",
+     ": /labels/names/tumour: expected an integer in [0, 2147483647], got -4"},
+    {"50-transfer-label-without-points.json",
+     ": /transfer/labels/0/points: missing; expected an array of at least 2 objects"},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {
