@@ -222,6 +222,26 @@ gpu::DescriptorSet FeatureBaker::makeSet(const gpu::Image& texture, const gpu::I
     return set;
 }
 
+namespace {
+
+// Two r32f ping-pong images for the passes and the RGBA16F result.
+struct Images {
+    gpu::Image a, b, out;
+};
+
+Images makeImages(const gpu::Context& ctx, VkExtent3D e) {
+    Images images;
+    images.a = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
+                                VK_IMAGE_USAGE_STORAGE_BIT);
+    images.b = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
+                                VK_IMAGE_USAGE_STORAGE_BIT);
+    images.out =
+        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16G16B16A16_SFLOAT, e, kFieldUsage);
+    return images;
+}
+
+} // namespace
+
 gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spacing,
                                        float threshold) const {
     const VkExtent3D e = values.extent;
@@ -233,12 +253,8 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
                          " voxels; the distance transform handles at most " +
                          std::to_string(shader::kEdtMaxLine) + " voxels per side");
 
-    gpu::Image a = gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                    VK_IMAGE_USAGE_STORAGE_BIT);
-    gpu::Image b = gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                    VK_IMAGE_USAGE_STORAGE_BIT);
-    gpu::Image out =
-        gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16G16B16A16_SFLOAT, e, kFieldUsage);
+    Images images = makeImages(m_ctx, e);
+    gpu::Image &a = images.a, &b = images.b, &out = images.out;
     gpu::DescriptorSet linesSet = makeSet(values, b, a, out);  // -> a
     gpu::DescriptorSet ySet = makeSet(values, a, b, out);      // a -> b
     gpu::DescriptorSet zSet = makeSet(values, b, a, out);      // b -> a
@@ -259,7 +275,7 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
                  p,
                  {groups(dims.x, 4), groups(dims.y, 4), groups(dims.z, 4)}};
     runPasses(m_ctx, m_layout.get(), {&a, &b}, out, passes);
-    return out;
+    return std::move(out);
 }
 
 gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
@@ -282,12 +298,8 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                      VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 
-    gpu::Image a = gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                    VK_IMAGE_USAGE_STORAGE_BIT);
-    gpu::Image b = gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                    VK_IMAGE_USAGE_STORAGE_BIT);
-    gpu::Image out =
-        gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16G16B16A16_SFLOAT, e, kFieldUsage);
+    Images images = makeImages(m_ctx, e);
+    gpu::Image &a = images.a, &b = images.b, &out = images.out;
     gpu::DescriptorSet xSet = makeSet(texture, b, a, out);      // indicator -> a
     gpu::DescriptorSet ySet = makeSet(texture, a, b, out);      // a -> b
     gpu::DescriptorSet zSet = makeSet(texture, b, a, out);      // b -> a
@@ -312,7 +324,7 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
     p.mode = 1;
     passes.push_back({m_finish.get(), finishSet.set, p, voxelGroups});
     runPasses(m_ctx, m_layout.get(), {&a, &b}, out, passes);
-    return out;
+    return std::move(out);
 }
 
 std::vector<float> distanceFieldCpu(const std::vector<uint8_t>& object, glm::ivec3 dims,

@@ -40,16 +40,7 @@ void parseLabels(JsonReader& reader, LabelSource& labels, const VolumeSource& vo
         reader.errorHere(std::string("expected exactly one of \"file\" or \"phantom\", got ") +
                          (hasFile ? "both" : "neither"));
     }
-    if (const auto file = reader.string("file")) {
-        const std::filesystem::path path = (baseDir / *file).lexically_normal();
-        labels.file = path;
-        std::error_code ec;
-        const auto status = std::filesystem::status(path, ec);
-        if (!std::filesystem::exists(status))
-            reader.error("file", "no such file: " + path.string());
-        else if (!std::filesystem::is_regular_file(status))
-            reader.error("file", "not a regular file: " + path.string());
-    }
+    labels.file = readExistingFile(reader, "file", baseDir);
     if (hasPhantom) {
         labels.phantom = reader.boolean("phantom", false);
         if (!labels.phantom)

@@ -41,6 +41,11 @@ void parseAnimation(JsonReader& reader, Animation& animation);
 void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
                     const std::optional<LabelSource>& labels);
 
+/// Resolves the path at `key` against `baseDir` and reports a missing file or
+/// one that is not a regular file. Returns the resolved path (empty if absent).
+std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
+                                       const std::filesystem::path& baseDir);
+
 /// Reads a direction: 3 numbers in [-kMaxCoordinate, kMaxCoordinate], not all zero.
 std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required);
 

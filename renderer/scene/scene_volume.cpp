@@ -66,6 +66,20 @@ RawLayout parseRaw(JsonReader& reader) {
 
 } // namespace
 
+std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
+                                       const std::filesystem::path& baseDir) {
+    const auto file = reader.string(key);
+    if (!file) return {};
+    const std::filesystem::path path = (baseDir / *file).lexically_normal();
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status))
+        reader.error(key, "no such file: " + path.string());
+    else if (!std::filesystem::is_regular_file(status))
+        reader.error(key, "not a regular file: " + path.string());
+    return path;
+}
+
 /// /volume: where the scalar field comes from. Exactly one of `file` or
 /// `phantom` is required.
 ///
@@ -92,16 +106,9 @@ void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem
                          (hasFile ? "both" : "neither"));
     }
 
-    if (const auto file = reader.string("file")) {
-        const std::filesystem::path path = (baseDir / *file).lexically_normal();
-        volume.file = path;
-        std::error_code ec;
-        const auto status = std::filesystem::status(path, ec);
-        if (!std::filesystem::exists(status)) {
-            reader.error("file", "no such file: " + path.string());
-        } else if (!std::filesystem::is_regular_file(status)) {
-            reader.error("file", "not a regular file: " + path.string());
-        } else if (!reader.has("raw") && !hasVolumeExtension(path)) {
+    volume.file = readExistingFile(reader, "file", baseDir);
+    if (!volume.file.empty() && std::filesystem::is_regular_file(volume.file)) {
+        if (!reader.has("raw") && !hasVolumeExtension(volume.file)) {
             reader.expected(reader.pointerOf("file"),
                             "a .nrrd, .nhdr, .nii or .nii.gz file, or a \"raw\" layout for a "
                             "headerless file",
