@@ -24,14 +24,14 @@ Volume loadSceneVolume(const Scene& scene) {
     return volume;
 }
 
-std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene, const Volume& scan) {
-    if (!scene.labels) return nullptr;
+namespace {
+
+// Checks labels (read or made) against the scan's grid; see loadSceneLabels.
+std::shared_ptr<const Volume> checkedLabels(const Scene& scene, Volume read, const Volume& scan) {
     const LabelSource& src = *scene.labels;
     const std::string name =
         src.phantom ? "the " + scene.volume.phantom + " phantom's labels" : src.file.string();
-    auto labels = std::make_shared<Volume>(
-        src.phantom ? makePhantom(scene.volume.phantom, scene.volume.phantomSize).labels
-                    : readVolume(src.file));
+    auto labels = std::make_shared<Volume>(std::move(read));
     if (scene.volume.spacing) labels->spacing = *scene.volume.spacing;
     const auto text = [](auto v) {
         std::ostringstream out;
@@ -59,6 +59,17 @@ std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene, const Volume& 
     return labels;
 }
 
+} // namespace
+
+std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene, const Volume& scan) {
+    if (!scene.labels) return nullptr;
+    return checkedLabels(scene,
+                         scene.labels->phantom
+                             ? makePhantom(scene.volume.phantom, scene.volume.phantomSize).labels
+                             : readVolume(scene.labels->file),
+                         scan);
+}
+
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {
     if (scene.volume.window) return {(*scene.volume.window)[0], (*scene.volume.window)[1]};
     const ValueRange range = valueRange(volume);
@@ -75,7 +86,17 @@ bool sequential(const Scene& scene) {
 } // namespace
 
 FrameVolume frameVolume(const Scene& scene) {
-    Volume scan = loadSceneVolume(scene);
+    // A phantom with its own labels is generated once, for both.
+    std::optional<Volume> phantomLabels;
+    Volume scan;
+    if (scene.labels && scene.labels->phantom && !sequential(scene)) {
+        Phantom phantom = makePhantom(scene.volume.phantom, scene.volume.phantomSize);
+        scan = std::move(phantom.values);
+        if (scene.volume.spacing) scan.spacing = *scene.volume.spacing;
+        phantomLabels = std::move(phantom.labels);
+    } else {
+        scan = loadSceneVolume(scene);
+    }
     const bake::ValueWindow window = sceneWindow(scene, scan);
     operators::PlacedVolume placed = operators::centred(std::move(scan));
     if (sequential(scene)) {
@@ -87,7 +108,9 @@ FrameVolume frameVolume(const Scene& scene) {
     // Sequential composition with several operators resamples the scan; the
     // parser allows no labels then (they would no longer match it).
     std::shared_ptr<const Volume> labels =
-        sequential(scene) ? nullptr : loadSceneLabels(scene, placed.volume);
+        sequential(scene) ? nullptr
+        : phantomLabels   ? checkedLabels(scene, std::move(*phantomLabels), placed.volume)
+                          : loadSceneLabels(scene, placed.volume);
     return FrameVolume{std::move(placed), window, std::move(labels)};
 }
 
