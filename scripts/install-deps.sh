@@ -10,9 +10,10 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev zlib1g-dev python3-jsonschema
+  libtinygltf-dev
 )
-# Added when their features land (see third_party_notes.md): libtinygltf-dev
-# for glTF tool meshes, libbenchmark-dev for bench/.
+# Added when its feature lands (see third_party_notes.md): libbenchmark-dev
+# for bench/.
 
 missing=()
 for p in "${packages[@]}"; do

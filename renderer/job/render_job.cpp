@@ -195,6 +195,14 @@ Image FrameRenderer::render(const Scene& scene) {
         ++m_uploads;
     }
     Scene live = scene;
+    // Attached meshes are placed in the world first: under sequential
+    // composition the live operators are a suffix of the scene's.
+    for (MeshSpec& mesh : live.meshes) {
+        if (!mesh.attach) continue;
+        const auto& op = scene.operators[static_cast<std::size_t>(*mesh.attach)];
+        mesh.placement = render::operatorFrame(op.localToWorld) * mesh.placement;
+        mesh.attach.reset();
+    }
     live.operators = liveOperators(scene);
     return m_renderer.render(live, *m_volume);
 }

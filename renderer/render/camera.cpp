@@ -17,7 +17,8 @@ glm::dvec3 orbitDirection(double azimuthDeg, double elevationDeg, glm::dvec3 up)
     return std::cos(el) * std::sin(az) * e1 - std::cos(el) * std::cos(az) * e2 + std::sin(el) * w;
 }
 
-CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width, int height) {
+CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width, int height,
+                             const Box* alsoInDepth) {
     CameraMatrices m;
     const double aspect = static_cast<double>(width) / static_cast<double>(height);
     const double radius = std::max(bounds.radius(), 1e-6);
@@ -47,12 +48,18 @@ CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width,
     // Depth range from the bounding sphere seen from the eye; slices carry no
     // depth yet, the planes only bound what is drawn.
     const double centreDepth = glm::dot(bounds.centre() - eye, m.forward);
-    double farPlane = std::max(centreDepth + 1.5 * radius, 1.0);
+    double nearest = centreDepth - 1.5 * radius, farthest = centreDepth + 1.5 * radius;
+    if (alsoInDepth) {
+        const double d = glm::dot(alsoInDepth->centre() - eye, m.forward);
+        nearest = std::min(nearest, d - 1.05 * alsoInDepth->radius());
+        farthest = std::max(farthest, d + 1.05 * alsoInDepth->radius());
+    }
+    const double farPlane = std::max(farthest, 1.0);
     if (m.perspective) {
-        m.nearPlane = std::max(centreDepth - 1.5 * radius, farPlane * 1e-3);
+        m.nearPlane = std::max(nearest, farPlane * 1e-3);
         m.proj = glm::perspective(fovY, aspect, m.nearPlane, farPlane);
     } else {
-        m.nearPlane = centreDepth - 1.5 * radius; // may be negative: ortho sees behind the eye
+        m.nearPlane = nearest; // may be negative: ortho sees behind the eye
         const double h = camera.orthoHeight > 0.0 ? camera.orthoHeight
                                                   : 2.0 * radius * std::max(1.0, 1.0 / aspect);
         const double w = h * aspect;

@@ -26,8 +26,11 @@ struct CameraMatrices {
 };
 
 /// Places the camera of `camera` for a `width` x `height` image looking at `bounds`
-/// (distance or ortho height 0 = fit the bounding sphere of `bounds`).
-CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width, int height);
+/// (distance or ortho height 0 = fit the bounding sphere of `bounds`). The depth
+/// range covers `bounds` and, when given, `alsoInDepth` (meshes, which the
+/// framing leaves out so that a long tool handle does not shrink the volume).
+CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width, int height,
+                             const Box* alsoInDepth = nullptr);
 
 /// Unit direction from target to eye for an orbit (see scene.hpp for the convention).
 glm::dvec3 orbitDirection(double azimuthDeg, double elevationDeg, glm::dvec3 up);

@@ -66,6 +66,10 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
 
     VkPipelineDepthStencilStateCreateInfo depth{
         VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    // Meshes drawn before the slices left their depth: the volume behind them
+    // is hidden. Slices write no depth (they are translucent).
+    depth.depthTestEnable = VK_TRUE;
+    depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
     depth.stencilTestEnable = VK_TRUE;
     VkStencilOpState stencil{};
     stencil.failOp = VK_STENCIL_OP_KEEP;

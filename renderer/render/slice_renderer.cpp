@@ -91,6 +91,20 @@ gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuV
     return image;
 }
 
+// A colour target's pixels from its readback buffer (half or float RGBA).
+Image readImage(const gpu::Context& ctx, const gpu::Buffer& readback, int width, int height) {
+    Image image(width, height);
+    const std::size_t count = image.rgba.size();
+    if (ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT) {
+        std::memcpy(image.rgba.data(), readback.mapped, count * sizeof(float));
+    } else {
+        const auto* halves = static_cast<const uint16_t*>(readback.mapped);
+        for (std::size_t i = 0; i < count; ++i)
+            image.rgba[i] = glm::unpackHalf1x16(halves[i]);
+    }
+    return image;
+}
+
 } // namespace
 
 SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
@@ -111,11 +125,13 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
     m_pipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Background, false);
     m_operatorPipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Operator, false);
     m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
+    m_meshes = std::make_unique<MeshPass>(ctx, m_setLayout.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
 
-void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOperatorId) {
+void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOperatorId,
+                                  bool withMeshes) {
     const bool sized =
         m_color.image && m_color.extent.width == width && m_color.extent.height == height;
     if (!sized) {
@@ -131,6 +147,15 @@ void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOper
                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
         m_operatorId = {};
         m_operatorIdReadback = {};
+        m_meshColor = {};
+        m_meshReadback = {};
+    }
+    if (withMeshes && !m_meshColor.image) {
+        m_meshColor =
+            gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        m_meshReadback =
+            gpu::createBuffer(m_ctx, m_readback.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
     if (withOperatorId && !m_operatorId.image) {
         m_operatorId =
@@ -195,6 +220,51 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
     }
 }
 
+// Step 1 of the mesh pass (mesh_pass.hpp): the meshes into their own target,
+// with the depth the slices are then tested against. Called with the targets
+// in attachment layouts; leaves the depth for the volume pass to load.
+void SliceRenderer::recordMeshes(VkCommandBuffer cmd, VkDescriptorSet frameSet) {
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = m_meshColor.view.get();
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = m_depthStencil.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {m_meshColor.extent.width, m_meshColor.extent.height}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &color;
+    info.pDepthAttachment = &depth;
+    info.pStencilAttachment = &depth;
+    vkCmdBeginRendering(cmd, &info);
+    VkViewport viewport{
+        0.0f, 0.0f, float(info.renderArea.extent.width), float(info.renderArea.extent.height),
+        0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
+    m_meshes->record(cmd, frameSet);
+    vkCmdEndRendering(cmd);
+    // The volume pass tests (and its stencil writes) after the meshes' depth writes.
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask =
+        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    barrier.dstStageMask = barrier.srcStageMask;
+    barrier.dstAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const int width = scene.render.width, height = scene.render.height;
     m_operators->update(scene.operators, volume);
@@ -209,7 +279,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         bounds.hi = glm::max(bounds.hi, op->box.hi());
     }
     proxies.push_back(boxProxy(volume.box));
-    const CameraMatrices cam = computeCamera(scene.camera, bounds, width, height);
+    const std::optional<Box> meshBounds = m_meshes->prepare(scene, 2.0 * volume.box.radius());
+    const CameraMatrices cam =
+        computeCamera(scene.camera, bounds, width, height, meshBounds ? &*meshBounds : nullptr);
     const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
     const double minDepth = cam.perspective ? cam.nearPlane : -1e30;
     const SliceSet slices = buildSlices(proxies, cam.eye, cam.forward, sliceMm, minDepth);
@@ -221,7 +293,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const shader::FrameUniforms uniforms = frameUniforms(scene, volume, cam, sliceMm);
     std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
     const bool withId = scene.output.operatorId;
-    ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height), withId);
+    const bool withMeshes = !m_meshes->empty();
+    ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height), withId, withMeshes);
     // Everything the classification table depends on; a turntable keeps it.
     std::vector<double> transferKey{
         double(scene.render.classification == Classification::Preintegrated), volume.window.lo,
@@ -273,6 +346,11 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         targets.push_back(&m_operatorId);
         readbacks.push_back(&m_operatorIdReadback);
     }
+    const std::size_t volumeTargets = targets.size(); // the mesh target is not in the volume pass
+    if (withMeshes) {
+        targets.push_back(&m_meshColor);
+        readbacks.push_back(&m_meshReadback);
+    }
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
         for (const gpu::Image* target : targets)
             gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -287,8 +365,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                             VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 
+        if (withMeshes) recordMeshes(cmd, set.set);
         VkRenderingAttachmentInfo colors[2];
-        for (std::size_t t = 0; t < targets.size(); ++t) {
+        for (std::size_t t = 0; t < volumeTargets; ++t) {
             VkRenderingAttachmentInfo& color = colors[t];
             color = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             color.imageView = targets[t]->view.get();
@@ -303,12 +382,14 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         ds.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
         ds.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         ds.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingAttachmentInfo depthAttachment = ds; // the meshes' depth, when there are any
+        if (withMeshes) depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
         info.renderArea = {{0, 0}, {m_color.extent.width, m_color.extent.height}};
         info.layerCount = 1;
-        info.colorAttachmentCount = static_cast<uint32_t>(targets.size());
+        info.colorAttachmentCount = static_cast<uint32_t>(volumeTargets);
         info.pColorAttachments = colors;
-        info.pDepthAttachment = &ds;
+        info.pDepthAttachment = &depthAttachment;
         info.pStencilAttachment = &ds;
         vkCmdBeginRendering(cmd, &info);
         VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height),
@@ -334,15 +415,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         gpu::barrierTransferToHost(cmd);
     });
 
-    Image image(width, height);
+    Image image = readImage(m_ctx, m_readback, width, height);
     const std::size_t count = image.rgba.size();
-    if (m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT) {
-        std::memcpy(image.rgba.data(), m_readback.mapped, count * sizeof(float));
-    } else {
-        const auto* halves = static_cast<const uint16_t*>(m_readback.mapped);
-        for (std::size_t i = 0; i < count; ++i)
-            image.rgba[i] = glm::unpackHalf1x16(halves[i]);
-    }
     if (withId) { // codes: 0 nothing visible, 2 the untouched volume, 3 + i operator i
         const auto* halves = static_cast<const uint16_t*>(m_operatorIdReadback.mapped);
         image.operatorIds.resize(count / 4);
@@ -350,6 +424,15 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
             const float code = glm::unpackHalf1x16(halves[4 * p]);
             const float covered = glm::unpackHalf1x16(halves[4 * p + 3]);
             image.operatorIds[p] = covered > 0.5f ? std::round(code) - 3.0f : -2.0f;
+        }
+    }
+    // The meshes are opaque and lie behind the volume in front of them.
+    if (withMeshes) {
+        const Image meshes = readImage(m_ctx, m_meshReadback, width, height);
+        for (std::size_t i = 0; i < count; i += 4) {
+            const float t = 1.0f - image.rgba[i + 3];
+            for (int c = 0; c < 4; ++c)
+                image.rgba[i + c] += t * meshes.rgba[i + c];
         }
     }
     // The background lies behind everything: composite it "under" the volume.

@@ -4,8 +4,9 @@
 // Per frame: the camera is placed, slice polygons are clipped on the CPU and
 // drawn front to back in one draw call; each fragment samples the volume,
 // classifies, corrects opacity, shades and is composited with premultiplied
-// "under" blending (dst += (1 - dst.a) * src). The target is read back and the
-// background composited behind the volume on the CPU.
+// "under" blending (dst += (1 - dst.a) * src). Opaque meshes (tools, glyphs)
+// are depth-tested with the slices (see MeshPass). The target is read back and
+// the background composited behind everything on the CPU.
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 #include "gpu/pipeline.hpp"
@@ -13,6 +14,7 @@
 #include "io/image.hpp"
 #include "render/gpu_operators.hpp"
 #include "render/gpu_volume.hpp"
+#include "render/mesh_pass.hpp"
 #include "render/slicer.hpp"
 #include "scene/scene.hpp"
 
@@ -42,7 +44,8 @@ public:
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
 
 private:
-    void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId);
+    void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId, bool withMeshes);
+    void recordMeshes(VkCommandBuffer cmd, VkDescriptorSet frameSet);
     void ensureVertexCapacity(std::size_t bytes);
     void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet,
                       bool withOperatorId) const;
@@ -58,6 +61,7 @@ private:
     gpu::PipelineHandle m_idPipeline;         ///< the two above with the operator-id target,
     gpu::PipelineHandle m_operatorIdPipeline; ///< made the first time a scene asks for it
     std::unique_ptr<OperatorStack> m_operators;
+    std::unique_ptr<MeshPass> m_meshes;
     gpu::Buffer m_uniforms;
     gpu::Buffer m_vertices;
     gpu::Image m_color;
@@ -67,7 +71,9 @@ private:
     std::vector<double> m_transferKey; ///< those inputs (pre-integration costs ~170 ms)
     gpu::Image m_classes;              ///< each voxel's classification layer (R8_UINT)
     std::vector<double> m_classesKey;  ///< the volume and the label lists it came from
-    gpu::Image m_operatorId;           ///< only while scenes ask for output.operator_id
+    gpu::Image m_meshColor;            ///< the meshes' image, only while scenes have meshes
+    gpu::Buffer m_meshReadback;
+    gpu::Image m_operatorId; ///< only while scenes ask for output.operator_id
     gpu::Buffer m_operatorIdReadback;
     FrameStats m_stats;
 };

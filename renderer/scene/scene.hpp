@@ -187,6 +187,14 @@ struct Alignment {
     std::optional<std::array<double, 2>> range; ///< segment: [lo, hi] values instead of labels
 };
 
+/// /operators/N/glyph: the operator's box drawn as an opaque outline (paper
+/// Fig. 8), so a reader sees where a lens or a cut acts.
+struct OperatorGlyph {
+    bool enabled = false;
+    glm::vec3 color{1.0f, 0.8f, 0.25f};
+    double width = 0.0; ///< mm, thickness of the outline's bars; 0 = 1/300 of the volume's diagonal
+};
+
 /// /operators/N: one manipulation operator (paper section 3; docs/operators.md).
 /// Its box is the unit cube [-1, 1]^3 of its local frame, placed in the world
 /// by `localToWorld` (Eq. 8: translate, rotate, scale, or a matrix); the
@@ -200,6 +208,20 @@ struct OperatorSpec {
     double normalBand = 2.0;   ///< /operators/N/normal_band: D of Eq. 7, mm
     Alignment alignment;       ///< /operators/N/alignment
     std::string name;          ///< /operators/N/name, for messages; default "operator N (type)"
+    OperatorGlyph glyph;       ///< /operators/N/glyph
+};
+
+/// /meshes/N: an opaque glTF 2.0 model (.gltf or .glb) drawn with depth before
+/// the volume, whose slices are depth-tested against it (paper Fig. 10).
+struct MeshSpec {
+    std::filesystem::path file; ///< resolved against the scene's folder
+    /// Model units to mm of the parent frame: translate * rotate * scale * units.
+    glm::dmat4 placement{1.0};
+    std::optional<glm::vec3> color; ///< /meshes/N/color; none = the model's base colours
+    /// /meshes/N/attach: index of the operator whose frame (box centre, box
+    /// axes, no scale) is the parent, so the mesh moves with it; none = world.
+    std::optional<int> attach;
+    std::string name; ///< /meshes/N/name, for messages; default "mesh N"
 };
 
 struct Scene {
@@ -215,6 +237,7 @@ struct Scene {
     RenderSettings render;
     OutputSettings output;
     std::vector<OperatorSpec> operators;
+    std::vector<MeshSpec> meshes;
     Animation animation;
     nlohmann::json document; ///< the validated JSON as given (for EXR headers)
 };

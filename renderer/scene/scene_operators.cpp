@@ -5,6 +5,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace cutaway::scene_detail {
+
+glm::dmat4 translateRotate(glm::dvec3 translate, glm::dvec3 rotateDeg) {
+    glm::dmat4 a = glm::translate(glm::dmat4(1.0), translate);
+    a = glm::rotate(a, glm::radians(rotateDeg.z), glm::dvec3(0, 0, 1));
+    a = glm::rotate(a, glm::radians(rotateDeg.y), glm::dvec3(0, 1, 0));
+    return glm::rotate(a, glm::radians(rotateDeg.x), glm::dvec3(1, 0, 0));
+}
+
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -40,11 +48,7 @@ glm::dmat4 parsePlacement(JsonReader& r, glm::dvec3& halfSize) {
     const glm::dvec3 size =
         r.vec3("scale", Range::openClosed(0.0, 1e5), true).value_or(glm::dvec3(2.0));
     halfSize = 0.5 * size;
-    glm::dmat4 a = glm::translate(glm::dmat4(1.0), t);
-    a = glm::rotate(a, glm::radians(deg.z), glm::dvec3(0, 0, 1));
-    a = glm::rotate(a, glm::radians(deg.y), glm::dvec3(0, 1, 0));
-    a = glm::rotate(a, glm::radians(deg.x), glm::dvec3(1, 0, 0));
-    return glm::scale(a, halfSize);
+    return glm::scale(translateRotate(t, deg), halfSize);
 }
 
 float f(double v) {
@@ -195,6 +199,28 @@ Alignment parseAlignment(JsonReader& a, const std::optional<LabelSource>& labels
     return result;
 }
 
+/// /operators/N/glyph: true, false, or an object:
+///  * show   boolean, default true
+///  * color  [r, g, b] in [0, 1], default [1, 0.8, 0.25]
+///  * width  number, mm, in (0, 1000], default 1/300 of the volume's diagonal
+void parseGlyph(JsonReader& r, OperatorGlyph& glyph) {
+    const nlohmann::json* g = r.find("glyph");
+    if (!g) return;
+    if (g->is_boolean()) {
+        glyph.enabled = g->get<bool>();
+        return;
+    }
+    if (!g->is_object()) {
+        r.expected(r.pointerOf("glyph"), "true, false or an object", *g);
+        return;
+    }
+    r.object("glyph", [&](JsonReader& o) {
+        glyph.enabled = o.boolean("show", true);
+        glyph.color = o.colour("color", glyph.color);
+        glyph.width = o.number("width", glyph.width, Range::openClosed(0.0, 1000.0));
+    });
+}
+
 } // namespace
 
 /// /operators: an array of manipulation operators, rendered together; their
@@ -208,6 +234,7 @@ Alignment parseAlignment(JsonReader& a, const std::optional<LabelSource>& labels
 ///  * resolution   integer in [8, 256], texels of the baked map per axis, default 64
 ///  * normal_band  number, mm, in [0, 1000], default 2: D of Eq. 7, the band over
 ///                 which normals blend to the cut's normal
+///  * glyph        boolean or object, default false: the box's outline, see parseGlyph
 void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
                     const std::optional<LabelSource>& labels) {
     root.objects("operators", 0, 8, [&](JsonReader& r, std::size_t index) {
@@ -223,6 +250,7 @@ void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
         const auto resolution = r.integer("resolution", 64, 8, 256);
         op.resolution = glm::ivec3(static_cast<int>(resolution));
         op.normalBand = r.number("normal_band", op.normalBand, Range::closed(0.0, 1000.0));
+        parseGlyph(r, op.glyph);
         const glm::dvec3 h = halfSize;
         r.object("params", [&](JsonReader& p) {
             if (type == "peeler") peeler(p, h, op.params);

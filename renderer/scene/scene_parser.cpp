@@ -114,7 +114,7 @@ void parseOutput(JsonReader& reader, OutputSettings& output) {
 ///  * animation  object, default: one frame, no tracks (scene_animation.cpp)
 ///  * operators  array, default []: manipulation operators (scene_operators.cpp)
 ///  * labels     object, default none: a label volume (scene_labels.cpp)
-///  * meshes: reserved for a later version; rejected.
+///  * meshes     array, default []: opaque glTF models drawn with the volume (scene_meshes.cpp)
 Scene parseScene(const nlohmann::json& document, const std::filesystem::path& baseDir,
                  const std::string& source) {
     using namespace scene_detail;
@@ -152,6 +152,7 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     root.object("output", [&](JsonReader& reader) { parseOutput(reader, scene.output); });
     root.object("animation", [&](JsonReader& reader) { parseAnimation(reader, scene.animation); });
     parseOperators(root, scene.operators, scene.labels);
+    parseMeshes(root, scene.meshes, scene.operators.size(), baseDir);
     // Sequential composition resamples the scan but not its labels or masks.
     if (scene.render.composition == Composition::Sequential && scene.operators.size() > 1) {
         for (std::size_t i = 0; i < scene.operators.size(); ++i) {
@@ -176,7 +177,6 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     if (pattern.is_relative() && !baseDir.empty())
         scene.output.pattern = (baseDir / pattern).lexically_normal().string();
 
-    root.reserved("meshes");
     root.finish();
     diagnostics.throwIfAny();
 

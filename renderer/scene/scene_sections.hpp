@@ -41,6 +41,12 @@ void parseAnimation(JsonReader& reader, Animation& animation);
 void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
                     const std::optional<LabelSource>& labels);
 
+/// /meshes (scene_meshes.cpp), read from the root; `operatorCount` bounds /meshes/N/attach.
+void parseMeshes(JsonReader& root, std::vector<MeshSpec>& meshes, std::size_t operatorCount,
+                 const std::filesystem::path& baseDir);
+/// translate(t) * rotate about z * about y * about x (degrees): the rigid part of a placement.
+glm::dmat4 translateRotate(glm::dvec3 translate, glm::dvec3 rotateDeg);
+
 /// Resolves the path at `key` against `baseDir` and reports a missing file or
 /// one that is not a regular file. Returns the resolved path (empty if absent).
 std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,

@@ -45,6 +45,24 @@ struct Lighting {
     vec3 specular;
 };
 
+// Blinn-Phong with the frame's ambient, headlight and directional lights for
+// a surface of unit normal n (either side lit).
+CW_FUNC Lighting lightSurface(vec3 n, vec3 toEye, FrameUniforms u) {
+    Lighting result;
+    result.diffuse = vec3(u.material.x);
+    result.specular = vec3(0.0f);
+    vec2 head = blinnPhong(n, toEye, toEye, u.material.y, u.material.z, u.material.w);
+    result.diffuse += vec3(u.headlight) * head.x;
+    result.specular += vec3(u.headlight) * head.y;
+    for (int i = 0; i < int(u.flags.x); ++i) {
+        vec2 l =
+            blinnPhong(n, vec3(u.lightDir[i]), toEye, u.material.y, u.material.z, u.material.w);
+        result.diffuse += vec3(u.lightColor[i]) * l.x;
+        result.specular += vec3(u.lightColor[i]) * l.y;
+    }
+    return result;
+}
+
 CW_FUNC Lighting lightSample(vec4 gradient, vec3 toEye, FrameUniforms u) {
     Lighting result;
     if (u.flags.y < 0.5f) { // shading off: the transfer function's colour as is
@@ -54,21 +72,11 @@ CW_FUNC Lighting lightSample(vec4 gradient, vec3 toEye, FrameUniforms u) {
     }
     vec3 g = vec3(gradient);
     vec3 n = dot(g, g) > 1e-12f ? normalize(-g) : toEye;
-    vec3 lit = vec3(u.material.x);
-    vec3 highlight = vec3(0.0f);
-    vec2 head = blinnPhong(n, toEye, toEye, u.material.y, u.material.z, u.material.w);
-    lit += vec3(u.headlight) * head.x;
-    highlight += vec3(u.headlight) * head.y;
-    for (int i = 0; i < int(u.flags.x); ++i) {
-        vec2 l =
-            blinnPhong(n, vec3(u.lightDir[i]), toEye, u.material.y, u.material.z, u.material.w);
-        lit += vec3(u.lightColor[i]) * l.x;
-        highlight += vec3(u.lightColor[i]) * l.y;
-    }
+    Lighting lit = lightSurface(n, toEye, u);
     float w = shadingWeight(gradient.w);
     vec3 unlit = vec3(u.material.x) + vec3(u.headlight) * u.material.y;
-    result.diffuse = mix(unlit, lit, w);
-    result.specular = highlight * w;
+    result.diffuse = mix(unlit, lit.diffuse, w);
+    result.specular = lit.specular * w;
     return result;
 }
 

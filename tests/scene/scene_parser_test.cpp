@@ -227,15 +227,6 @@ TEST(SceneParser, UnknownKeysSuggestTheClosestKnownKey) {
               "\"head\"?), got \"hed\"");
 }
 
-TEST(SceneParser, ReservedSectionsAreNotSupportedYet) {
-    for (const std::string key : {"meshes"}) {
-        json document = minimalScene();
-        document[key] = json::object();
-        EXPECT_EQ(parseError(document),
-                  "scene.json: /" + key + ": not supported yet by this version of cutaway");
-    }
-}
-
 TEST(SceneParser, VersionIsRequiredAndChecked) {
     EXPECT_EQ(parseError(patched(R"({"version": null})")),
               "scene.json: /version: missing; add \"version\": 1 at the top level of the scene");

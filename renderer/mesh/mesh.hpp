@@ -1,0 +1,35 @@
+#pragma once
+// Triangle meshes drawn with the volume: glTF tool models (paper Fig. 10) and
+// the built-in operator glyphs (Fig. 8). Plain CPU data; render/ uploads it.
+#include <cstdint>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <vector>
+
+namespace cutaway::mesh {
+
+/// An indexed triangle list. Positions are in the model's own units and frame;
+/// normals are unit length, one per vertex; colours are linear RGBA, one per
+/// vertex (the material's base colour, times COLOR_0 where the model has it).
+struct TriangleMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec4> colors;
+    std::vector<std::uint32_t> indices; ///< three per triangle
+    glm::vec3 lo{0.0f}, hi{0.0f};       ///< bounds of the positions
+
+    std::size_t triangleCount() const { return indices.size() / 3; }
+    /// Appends another mesh (indices are offset); bounds are updated.
+    void append(const TriangleMesh& other);
+};
+
+/// Reads a glTF 2.0 file (.gltf with its buffers, or .glb): every triangle
+/// primitive of the default scene's nodes, with node transforms applied.
+/// Throws InputError naming the file and what is wrong with it.
+TriangleMesh loadGltf(const std::filesystem::path& file);
+
+/// The outline of the box [lo, hi]: its 12 edges as square bars `width` thick
+/// (so the lines keep their width at any image size), flat-shaded, one colour.
+TriangleMesh boxOutline(glm::vec3 lo, glm::vec3 hi, float width, glm::vec4 color);
+
+} // namespace cutaway::mesh
