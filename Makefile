@@ -2,11 +2,12 @@
 #   make demo   install what is missing, build, render the default scene (EXR + PNG)
 #   make test   install what is missing, build, run the whole test suite with ctest
 #   make bench  bake times at 256^3 (a table; the Table 1 frame benchmark comes later)
+#   make gallery  render every gallery scene at 512^2: docs/gallery/*.png and docs/gallery.md
 BUILD ?= build
 JOBS ?= $(shell nproc)
 BUILD_TYPE ?= Release
 
-.PHONY: all deps configure build demo test bench clean format
+.PHONY: all deps configure build demo test bench gallery clean format
 
 all: build
 
@@ -31,6 +32,10 @@ test: build
 bench: configure
 	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_bench_bake
 	@$(BUILD)/bench/cutaway_bench_bake 256 3
+
+gallery: configure
+	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway
+	@/usr/bin/python3 scripts/gallery.py $(BUILD)/cutaway $(SCENES)
 
 format:
 	@git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i

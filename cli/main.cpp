@@ -13,6 +13,7 @@
 #include "core/error.hpp"
 #include "gpu/context.hpp"
 #include "interrupt.hpp"
+#include "job/render_job.hpp"
 #include "job/sequence.hpp"
 #include "operators/deformed_volume.hpp"
 #include "operators/operator_geometry.hpp"
@@ -204,6 +205,7 @@ int main(int argc, char** argv) {
             const auto& a = scene.animation;
             for (int f = a.firstFrame; f <= a.lastFrame && !a.tracks.empty(); ++f)
                 cutaway::sceneAtFrame(scene, f);
+            cutaway::job::checkSceneMeshes(scene);
             std::printf("%s: valid (frames %d..%d)\n", validateScene.c_str(), a.firstFrame,
                         a.lastFrame);
             return 0;

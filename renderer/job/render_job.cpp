@@ -1,6 +1,7 @@
 #include "job/render_job.hpp"
 
 #include "core/error.hpp"
+#include "mesh/mesh.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
 #include "volume/phantom.hpp"
@@ -178,6 +179,11 @@ void applyOverrides(Scene& scene, const RenderOverrides& overrides) {
         scene.render.height = overrides.size->y;
     }
     if (overrides.png) scene.output.png = true;
+}
+
+void checkSceneMeshes(const Scene& scene) {
+    for (const MeshSpec& mesh : scene.meshes)
+        mesh::loadGltf(mesh.file);
 }
 
 FrameRenderer::FrameRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx), m_renderer(ctx) {}
