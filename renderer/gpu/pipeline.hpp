@@ -33,6 +33,24 @@ PipelineLayoutHandle createPipelineLayout(const Context& ctx,
 PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
                                      VkShaderModule module);
 
+/// What differs between cutaway's graphics pipelines. The rest is shared:
+/// triangle lists, no culling (slice winding depends on the view; tool models
+/// are not always closed), one sample, one viewport and scissor (dynamic),
+/// dynamic rendering with the context's depth-stencil format.
+struct GraphicsPipelineParts {
+    VkShaderModule vertex = VK_NULL_HANDLE;
+    VkShaderModule fragment = VK_NULL_HANDLE;
+    std::vector<VkVertexInputBindingDescription> bindings;
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    VkPipelineDepthStencilStateCreateInfo depthStencil{
+        VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    std::vector<VkPipelineColorBlendAttachmentState> blends; ///< one per colour attachment
+    std::vector<VkFormat> colorFormats;                      ///< one per colour attachment
+    std::vector<VkDynamicState> extraDynamicStates;          ///< besides viewport and scissor
+};
+PipelineHandle createGraphicsPipeline(const Context& ctx, VkPipelineLayout layout,
+                                      const GraphicsPipelineParts& parts);
+
 /// Runs a compute pipeline that writes every texel of `target` (a storage
 /// image bound in `set`), in groups of `groupSize`, then leaves `target` in
 /// SHADER_READ_ONLY_OPTIMAL for fragment shaders, compute shaders and copies.

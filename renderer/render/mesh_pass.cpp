@@ -139,4 +139,44 @@ void MeshPass::record(VkCommandBuffer cmd, VkDescriptorSet frameSet) {
     }
 }
 
+void MeshPass::recordPass(VkCommandBuffer cmd, VkDescriptorSet frameSet, const gpu::Image& color,
+                          const gpu::Image& depthStencil) {
+    VkRenderingAttachmentInfo target{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    target.imageView = color.view.get();
+    target.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    target.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR; // transparent black where no mesh is
+    target.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingAttachmentInfo depth = target;
+    depth.imageView = depthStencil.view.get();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    info.renderArea = {{0, 0}, {color.extent.width, color.extent.height}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &target;
+    info.pDepthAttachment = &depth;
+    info.pStencilAttachment = &depth;
+    vkCmdBeginRendering(cmd, &info);
+    VkViewport viewport{
+        0.0f, 0.0f, float(info.renderArea.extent.width), float(info.renderArea.extent.height),
+        0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
+    record(cmd, frameSet);
+    vkCmdEndRendering(cmd);
+    // The volume pass tests (and its stencil writes) after the meshes' depth writes.
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask =
+        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    barrier.dstStageMask = barrier.srcStageMask;
+    barrier.dstAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 } // namespace cutaway::render

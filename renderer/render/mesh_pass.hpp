@@ -39,9 +39,12 @@ public:
     std::optional<Box> prepare(const Scene& scene, double volumeDiagonal);
 
     bool empty() const { return m_draws.empty(); }
-    /// Step 1: draws every mesh, inside a render pass whose only colour
-    /// attachment is the mesh target (format of the colour target).
-    void record(VkCommandBuffer cmd, VkDescriptorSet frameSet);
+    /// Step 1, a render pass of its own: clears `color` (the colour target's
+    /// format) and `depthStencil`, draws every mesh, and makes the depth
+    /// visible to the volume pass that loads it. Both images must be in
+    /// their attachment layouts.
+    void recordPass(VkCommandBuffer cmd, VkDescriptorSet frameSet, const gpu::Image& color,
+                    const gpu::Image& depthStencil);
 
 private:
     struct GpuMesh {
@@ -56,6 +59,7 @@ private:
         std::optional<glm::vec3> color;
     };
     void upload(GpuMesh& gpuMesh, const mesh::TriangleMesh& mesh, bool reuse);
+    void record(VkCommandBuffer cmd, VkDescriptorSet frameSet);
 
     const gpu::Context& m_ctx;
     gpu::PipelineLayoutHandle m_layout;

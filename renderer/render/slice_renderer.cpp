@@ -91,6 +91,22 @@ gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuV
     return image;
 }
 
+// A render-pass attachment cleared at the start: colour to transparent black,
+// depth to 1 and stencil to 0.
+VkRenderingAttachmentInfo clearedAttachment(VkImageView view, VkImageLayout layout,
+                                            VkAttachmentStoreOp store) {
+    VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    a.imageView = view;
+    a.imageLayout = layout;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = store;
+    if (layout == VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL)
+        a.clearValue.depthStencil = {1.0f, 0};
+    else
+        a.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
+    return a;
+}
+
 // A colour target's pixels from its readback buffer (half or float RGBA).
 Image readImage(const gpu::Context& ctx, const gpu::Buffer& readback, int width, int height) {
     Image image(width, height);
@@ -220,51 +236,6 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
     }
 }
 
-// Step 1 of the mesh pass (mesh_pass.hpp): the meshes into their own target,
-// with the depth the slices are then tested against. Called with the targets
-// in attachment layouts; leaves the depth for the volume pass to load.
-void SliceRenderer::recordMeshes(VkCommandBuffer cmd, VkDescriptorSet frameSet) {
-    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = m_meshColor.view.get();
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = m_depthStencil.view.get();
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {m_meshColor.extent.width, m_meshColor.extent.height}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &color;
-    info.pDepthAttachment = &depth;
-    info.pStencilAttachment = &depth;
-    vkCmdBeginRendering(cmd, &info);
-    VkViewport viewport{
-        0.0f, 0.0f, float(info.renderArea.extent.width), float(info.renderArea.extent.height),
-        0.0f, 1.0f};
-    vkCmdSetViewport(cmd, 0, 1, &viewport);
-    vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
-    m_meshes->record(cmd, frameSet);
-    vkCmdEndRendering(cmd);
-    // The volume pass tests (and its stencil writes) after the meshes' depth writes.
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask =
-        VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    barrier.dstStageMask = barrier.srcStageMask;
-    barrier.dstAccessMask = VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
 Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const int width = scene.render.width, height = scene.render.height;
     m_operators->update(scene.operators, volume);
@@ -365,23 +336,15 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                             VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                         VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
 
-        if (withMeshes) recordMeshes(cmd, set.set);
+        if (withMeshes) m_meshes->recordPass(cmd, set.set, m_meshColor, m_depthStencil);
         VkRenderingAttachmentInfo colors[2];
-        for (std::size_t t = 0; t < volumeTargets; ++t) {
-            VkRenderingAttachmentInfo& color = colors[t];
-            color = {VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            color.imageView = targets[t]->view.get();
-            color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-            color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-            color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            color.clearValue.color = {{0.0f, 0.0f, 0.0f, 0.0f}};
-        }
-        VkRenderingAttachmentInfo ds{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        ds.imageView = m_depthStencil.view.get();
-        ds.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-        ds.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        ds.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-        ds.clearValue.depthStencil = {1.0f, 0};
+        for (std::size_t t = 0; t < volumeTargets; ++t)
+            colors[t] =
+                clearedAttachment(targets[t]->view.get(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                                  VK_ATTACHMENT_STORE_OP_STORE);
+        const VkRenderingAttachmentInfo ds = clearedAttachment(
+            m_depthStencil.view.get(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+            VK_ATTACHMENT_STORE_OP_DONT_CARE);
         VkRenderingAttachmentInfo depthAttachment = ds; // the meshes' depth, when there are any
         if (withMeshes) depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};

@@ -45,7 +45,6 @@ public:
 
 private:
     void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId, bool withMeshes);
-    void recordMeshes(VkCommandBuffer cmd, VkDescriptorSet frameSet);
     void ensureVertexCapacity(std::size_t bytes);
     void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet,
                       bool withOperatorId) const;
