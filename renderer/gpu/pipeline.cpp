@@ -132,7 +132,7 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, VkPipelineLayout layou
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
          VK_SHADER_STAGE_VERTEX_BIT, parts.vertex, "main", nullptr},
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
-         VK_SHADER_STAGE_FRAGMENT_BIT, parts.fragment, "main", nullptr}};
+         VK_SHADER_STAGE_FRAGMENT_BIT, parts.fragment, "main", parts.fragmentConstants}};
     VkPipelineVertexInputStateCreateInfo vertexInput{
         VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     vertexInput.vertexBindingDescriptionCount = static_cast<uint32_t>(parts.bindings.size());

@@ -47,6 +47,7 @@ struct GraphicsPipelineParts {
     std::vector<VkPipelineColorBlendAttachmentState> blends; ///< one per colour attachment
     std::vector<VkFormat> colorFormats;                      ///< one per colour attachment
     std::vector<VkDynamicState> extraDynamicStates;          ///< besides viewport and scissor
+    const VkSpecializationInfo* fragmentConstants = nullptr; ///< specialization, or none
 };
 PipelineHandle createGraphicsPipeline(const Context& ctx, VkPipelineLayout layout,
                                       const GraphicsPipelineParts& parts);

@@ -6,6 +6,12 @@
 #include <cstring>
 
 namespace cutaway::render {
+
+int alignmentCode(AlignmentMode mode) {
+    return mode == AlignmentMode::Surface   ? CW_ALIGN_SURFACE
+           : mode == AlignmentMode::Segment ? CW_ALIGN_SEGMENT
+                                            : CW_ALIGN_AXIS;
+}
 namespace {
 
 bool sameMap(const OperatorSpec& a, const OperatorSpec& b) {
@@ -27,9 +33,7 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
     u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), static_cast<float>(index + 3),
                        0.0f, 0.0f); // id code: see slice_common.h
     const Alignment& al = spec.alignment;
-    const float mode = al.mode == AlignmentMode::Surface   ? CW_ALIGN_SURFACE
-                       : al.mode == AlignmentMode::Segment ? CW_ALIGN_SEGMENT
-                                                           : CW_ALIGN_AXIS;
+    const float mode = static_cast<float>(alignmentCode(al.mode));
     u.align = glm::vec4(mode, static_cast<float>(al.depth), static_cast<float>(al.band),
                         static_cast<float>(al.band));
     return u;

@@ -16,6 +16,9 @@
 
 namespace cutaway::render {
 
+/// CW_ALIGN_* of shaders/shared/feature.h for an alignment mode.
+int alignmentCode(AlignmentMode mode);
+
 struct GpuOperator {
     OperatorSpec spec;
     operators::WorldBox box; ///< the deformed box in the world: the operator's proxy

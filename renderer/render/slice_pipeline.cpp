@@ -26,9 +26,19 @@ gpu::ShaderModuleHandle fragmentShader(const gpu::Context& ctx, SliceProxy proxy
 } // namespace
 
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
-                                        SliceProxy proxy, bool withOperatorId) {
+                                        const SliceVariant& variant) {
+    const SliceProxy proxy = variant.proxy;
+    const bool withOperatorId = variant.withOperatorId;
     auto vert = gpu::createShaderModule(ctx, slice_vert_spv, sizeof(slice_vert_spv));
     auto frag = fragmentShader(ctx, proxy, withOperatorId);
+    // constant_id 0..4 of slice_common.h; booleans are 32-bit VkBool32.
+    const uint32_t constants[5] = {variant.preintegrated, variant.byLabel, variant.shading,
+                                   static_cast<uint32_t>(variant.lights),
+                                   static_cast<uint32_t>(variant.alignment)};
+    VkSpecializationMapEntry entries[5];
+    for (uint32_t i = 0; i < 5; ++i)
+        entries[i] = {i, i * 4u, 4u};
+    const VkSpecializationInfo specialization{5, entries, sizeof constants, constants};
     gpu::GraphicsPipelineParts parts;
     parts.vertex = vert.get();
     parts.fragment = frag.get();
@@ -77,6 +87,7 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
         parts.colorFormats.push_back(kOperatorIdFormat);
     }
     parts.extraDynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE};
+    parts.fragmentConstants = &specialization;
     return gpu::createGraphicsPipeline(ctx, layout, parts);
 }
 

@@ -22,9 +22,23 @@ enum class SliceProxy {
 /// The operator-id target: RGBA16F, see shaders/glsl/slice_common.h.
 constexpr VkFormat kOperatorIdFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 
-/// `withOperatorId`: a second colour attachment receives the id of the proxy
-/// whose sample was the first visible one in each pixel.
+/// What a frame fixes in the slicing fragment shaders, given to them as
+/// specialization constants (shaders/glsl/slice_common.h) so that each
+/// pipeline runs only the code its frame needs. `withOperatorId`: a second
+/// colour attachment receives the id of the proxy whose sample was the first
+/// visible one in each pixel.
+struct SliceVariant {
+    SliceProxy proxy = SliceProxy::Background;
+    bool withOperatorId = false;
+    bool preintegrated = false;
+    bool byLabel = false;
+    bool shading = true;
+    int lights = 0;    ///< directional lights, 0..CW_MAX_LIGHTS
+    int alignment = 0; ///< operator proxies: CW_ALIGN_*
+    auto operator<=>(const SliceVariant&) const = default;
+};
+
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
-                                        SliceProxy proxy, bool withOperatorId);
+                                        const SliceVariant& variant);
 
 } // namespace cutaway::render

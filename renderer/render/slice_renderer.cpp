@@ -138,8 +138,6 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get(), m_operatorSetLayout.get()});
-    m_pipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Background, false);
-    m_operatorPipeline = createSlicePipeline(ctx, m_layout.get(), SliceProxy::Operator, false);
     m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
     m_meshes = std::make_unique<MeshPass>(ctx, m_setLayout.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
@@ -180,11 +178,6 @@ void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOper
         m_operatorIdReadback =
             gpu::createBuffer(m_ctx, 8ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
-    if (withOperatorId && !m_idPipeline) {
-        m_idPipeline = createSlicePipeline(m_ctx, m_layout.get(), SliceProxy::Background, true);
-        m_operatorIdPipeline =
-            createSlicePipeline(m_ctx, m_layout.get(), SliceProxy::Operator, true);
-    }
 }
 
 void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
@@ -193,11 +186,25 @@ void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
 }
 
+VkPipeline SliceRenderer::pipelineFor(const SliceVariant& variant) {
+    auto found = m_pipelines.find(variant);
+    if (found == m_pipelines.end())
+        found = m_pipelines.emplace(variant, createSlicePipeline(m_ctx, m_layout.get(), variant))
+                    .first;
+    return found->second.get();
+}
+
 void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
-                                 VkDescriptorSet frameSet, bool withOperatorId) const {
-    const VkPipeline background = withOperatorId ? m_idPipeline.get() : m_pipeline.get();
-    const VkPipeline operatorPipeline =
-        withOperatorId ? m_operatorIdPipeline.get() : m_operatorPipeline.get();
+                                 VkDescriptorSet frameSet, SliceVariant frame) {
+    frame.proxy = SliceProxy::Background;
+    const VkPipeline background = pipelineFor(frame);
+    std::vector<VkPipeline> operatorPipelines; // by the operator's alignment
+    for (const auto& op : m_operators->operators()) {
+        SliceVariant v = frame;
+        v.proxy = SliceProxy::Operator;
+        v.alignment = alignmentCode(op->spec.alignment.mode);
+        operatorPipelines.push_back(pipelineFor(v));
+    }
     VkDeviceSize offset = 0;
     VkBuffer vb = m_vertices.buffer.get();
     vkCmdBindVertexBuffers(cmd, 0, 1, &vb, &offset);
@@ -226,7 +233,8 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
             if (d.proxy == volumeProxy) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, background);
             } else {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, operatorPipeline);
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                                  operatorPipelines[static_cast<std::size_t>(d.proxy)]);
                 VkDescriptorSet set = ops[static_cast<std::size_t>(d.proxy)]->set.set;
                 vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 1, 1,
                                         &set, 0, nullptr);
@@ -322,6 +330,13 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         targets.push_back(&m_meshColor);
         readbacks.push_back(&m_meshReadback);
     }
+    SliceVariant variant; // what this frame fixes in the shaders
+    variant.withOperatorId = withId;
+    variant.preintegrated = scene.render.classification == Classification::Preintegrated;
+    variant.byLabel = volume.labels && !scene.labelTransfers.empty();
+    variant.shading = scene.render.shading.enabled;
+    variant.lights = static_cast<int>(
+        std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
         for (const gpu::Image* target : targets)
             gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -359,7 +374,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                             0.0f, 1.0f};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
-        if (!slices.triangles.empty()) recordSlices(cmd, slices, set.set, withId);
+        if (!slices.triangles.empty()) recordSlices(cmd, slices, set.set, variant);
         vkCmdEndRendering(cmd);
 
         for (std::size_t t = 0; t < targets.size(); ++t) {

@@ -15,6 +15,7 @@
 #include "render/gpu_operators.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/mesh_pass.hpp"
+#include "render/slice_pipeline.hpp"
 #include "render/slicer.hpp"
 #include "scene/scene.hpp"
 
@@ -47,7 +48,9 @@ private:
     void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId, bool withMeshes);
     void ensureVertexCapacity(std::size_t bytes);
     void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet,
-                      bool withOperatorId) const;
+                      SliceVariant frame);
+    /// The pipeline of `variant`, made on first use (a few per scene).
+    VkPipeline pipelineFor(const SliceVariant& variant);
 
     const gpu::Context& m_ctx;
     gpu::SamplerHandle m_sampler;
@@ -55,10 +58,7 @@ private:
     gpu::DescriptorSetLayoutHandle m_setLayout;         ///< set 0: frame
     gpu::DescriptorSetLayoutHandle m_operatorSetLayout; ///< set 1: one operator
     gpu::PipelineLayoutHandle m_layout;
-    gpu::PipelineHandle m_pipeline;           ///< background proxy
-    gpu::PipelineHandle m_operatorPipeline;   ///< operator proxies
-    gpu::PipelineHandle m_idPipeline;         ///< the two above with the operator-id target,
-    gpu::PipelineHandle m_operatorIdPipeline; ///< made the first time a scene asks for it
+    std::map<SliceVariant, gpu::PipelineHandle> m_pipelines;
     std::unique_ptr<OperatorStack> m_operators;
     std::unique_ptr<MeshPass> m_meshes;
     gpu::Buffer m_uniforms;

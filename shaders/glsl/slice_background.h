@@ -12,7 +12,7 @@ void main() {
     float front = texture(volumeTex, tc).r;
     float back = front;
     vec3 shadeAt = tc; // the slab's middle when pre-integrated
-    if (u.flags.z > 0.5) {
+    if (cwPreintegrated) {
         back = texture(volumeTex, toTexture(worldPos - toEye * stepMm)).r;
         shadeAt = toTexture(worldPos - toEye * (0.5 * stepMm));
     }

@@ -3,6 +3,18 @@
 #ifndef CUTAWAY_SLICE_COMMON_H
 #define CUTAWAY_SLICE_COMMON_H
 
+// What a frame fixes, as specialization constants (see SliceVariant in
+// render/slice_pipeline.hpp): the compiler drops the paths a frame does not
+// take. On lavapipe a branch on a uniform still costs both sides, so these
+// halve the cost of a fragment.
+layout(constant_id = 0) const bool cwPreintegrated = false;
+layout(constant_id = 1) const bool cwByLabel = false;
+layout(constant_id = 2) const bool cwShading = true;
+layout(constant_id = 3) const int cwLightCount = 0;
+layout(constant_id = 4) const int cwAlignment = 0; // operator proxies: CW_ALIGN_*
+#define CW_SHADING_ON(u) cwShading
+#define CW_LIGHT_COUNT(u) cwLightCount
+
 #include "shared/frame.h"
 #include "shared/shading.h"
 
@@ -46,7 +58,7 @@ float obliquityOf(vec3 toEye) { return 1.0 / max(dot(-toEye, u.viewDir.xyz), 1e-
 
 // The classification layer of the voxel nearest to texture coordinate tc.
 float classLayer(vec3 tc) {
-    if (u.flags.w < 0.5) return 0.0;
+    if (!cwByLabel) return 0.0;
     ivec3 dims = textureSize(classTex, 0);
     ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
     return float(texelFetch(classTex, voxel, 0).r);
@@ -55,7 +67,7 @@ float classLayer(vec3 tc) {
 // Premultiplied colour of the slab from `front` to `back` (normalized values),
 // classified by table `layer`.
 vec4 classifySlab(float front, float back, float obliquity, float layer) {
-    if (u.flags.z > 0.5) {
+    if (cwPreintegrated) {
         vec2 at = vec2(front, back) * u.valueToTf.x + u.valueToTf.y;
         vec4 slab = texture(transferTex, vec3(at, layer));
         if (slab.a <= 0.0) return vec4(0.0);

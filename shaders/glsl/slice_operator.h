@@ -29,7 +29,7 @@ vec4 probe(vec3 world) {
 
 bool inVolume(vec3 tc) { return all(greaterThanEqual(tc, vec3(0.0))) && all(lessThanEqual(tc, vec3(1.0))); }
 
-int alignment() { return int(op.align.x + 0.5); }
+int alignment() { return cwAlignment; } // op.align.x, fixed per pipeline
 
 // M at texture coordinate tc (0 for axis alignment).
 float maskAt(vec3 tc) {
@@ -98,7 +98,7 @@ void main() {
     float frontValue = texture(volumeTex, front.tc).r;
     float backValue = frontValue;
     vec3 shadePoint = worldPos; // the slab's middle when pre-integrated, as for the background
-    if (u.flags.z > 0.5) {
+    if (cwPreintegrated) {
         Resolved back = resolve(worldPos - toEye * stepMm);
         if (back.which != CW_CASE_EMPTY) backValue = texture(volumeTex, back.tc).r;
         shadePoint = worldPos - toEye * (0.5 * stepMm);

@@ -7,6 +7,10 @@
 #include "shared/glsl_cpp.h"
 
 #define CW_MAX_LIGHTS 4
+// Early ray termination: a pixel whose composited opacity reaches this takes
+// no more samples (slicing marks it in depth every few slices). What is left
+// behind it could add at most 1 - CW_OPAQUE_ALPHA to any channel.
+#define CW_OPAQUE_ALPHA 0.995
 
 CW_NAMESPACE_BEGIN
 

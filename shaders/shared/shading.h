@@ -6,6 +6,16 @@
 #include "shared/frame.h"
 #include "shared/glsl_cpp.h"
 
+// Whether shading is on and how many directional lights there are: read from
+// the frame's flags, unless a shader defines them as specialization constants
+// (the slicing shaders do: a software rasterizer runs both sides of a branch).
+#ifndef CW_SHADING_ON
+#define CW_SHADING_ON(u) ((u).flags.y >= 0.5f)
+#endif
+#ifndef CW_LIGHT_COUNT
+#define CW_LIGHT_COUNT(u) int((u).flags.x)
+#endif
+
 CW_NAMESPACE_BEGIN
 
 // Opacity of a sample `ratio` reference steps thick, given its opacity for one
@@ -54,7 +64,7 @@ CW_FUNC Lighting lightSurface(vec3 n, vec3 toEye, FrameUniforms u) {
     vec2 head = blinnPhong(n, toEye, toEye, u.material.y, u.material.z, u.material.w);
     result.diffuse += vec3(u.headlight) * head.x;
     result.specular += vec3(u.headlight) * head.y;
-    for (int i = 0; i < int(u.flags.x); ++i) {
+    for (int i = 0; i < CW_LIGHT_COUNT(u); ++i) {
         vec2 l =
             blinnPhong(n, vec3(u.lightDir[i]), toEye, u.material.y, u.material.z, u.material.w);
         result.diffuse += vec3(u.lightColor[i]) * l.x;
@@ -65,7 +75,7 @@ CW_FUNC Lighting lightSurface(vec3 n, vec3 toEye, FrameUniforms u) {
 
 CW_FUNC Lighting lightSample(vec4 gradient, vec3 toEye, FrameUniforms u) {
     Lighting result;
-    if (u.flags.y < 0.5f) { // shading off: the transfer function's colour as is
+    if (!CW_SHADING_ON(u)) { // shading off: the transfer function's colour as is
         result.diffuse = vec3(1.0f);
         result.specular = vec3(0.0f);
         return result;
