@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "gpu/check.hpp"
 #include "render/label_classes.hpp"
+#include "render/occupancy.hpp"
 #include "render/preintegration.hpp"
 #include "render/slice_pipeline.hpp"
 #include "render/slicer.hpp"
@@ -140,6 +141,7 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
     m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get(), m_operatorSetLayout.get()});
     m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
     m_meshes = std::make_unique<MeshPass>(ctx, m_setLayout.get());
+    m_saturation = std::make_unique<SaturationPass>(ctx, m_nearest.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
@@ -151,7 +153,8 @@ void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOper
     if (!sized) {
         m_color =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
-                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+                             VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                                 VK_IMAGE_USAGE_SAMPLED_BIT);
         m_depthStencil =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil,
                              {width, height, 1}, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
@@ -186,16 +189,37 @@ void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
 }
 
+const std::vector<Box>& SliceRenderer::occupiedFor(const Scene& scene, const GpuVolume& volume) {
+    std::vector<const TransferFunction*> transfers{&scene.transfer};
+    if (volume.labels) {
+        for (const LabelTransfer& t : scene.labelTransfers)
+            transfers.push_back(&t.transfer);
+    }
+    std::vector<double> key{double(volume.serial), volume.window.lo, volume.window.hi};
+    for (const TransferFunction* tf : transfers) {
+        key.push_back(double(tf->points.size()));
+        for (const TransferPoint& p : tf->points)
+            key.insert(key.end(), {p.value, double(p.alpha)});
+    }
+    if (key != m_occupiedKey) {
+        m_occupied = volume.scan ? occupiedBoxes(*volume.scan, volume.box, volume.window, transfers)
+                                 : std::vector<Box>{volume.box};
+        m_occupiedKey = std::move(key);
+    }
+    return m_occupied;
+}
+
 VkPipeline SliceRenderer::pipelineFor(const SliceVariant& variant) {
     auto found = m_pipelines.find(variant);
     if (found == m_pipelines.end())
-        found = m_pipelines.emplace(variant, createSlicePipeline(m_ctx, m_layout.get(), variant))
-                    .first;
+        found =
+            m_pipelines.emplace(variant, createSlicePipeline(m_ctx, m_layout.get(), variant)).first;
     return found->second.get();
 }
 
 void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
-                                 VkDescriptorSet frameSet, SliceVariant frame) {
+                                 VkDescriptorSet frameSet, SliceVariant frame, std::size_t begin,
+                                 std::size_t end) {
     frame.proxy = SliceProxy::Background;
     const VkPipeline background = pipelineFor(frame);
     std::vector<VkPipeline> operatorPipelines; // by the operator's alignment
@@ -211,14 +235,22 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 0, 1, &frameSet,
                             0, nullptr);
     const auto& ops = m_operators->operators();
-    const int volumeProxy = static_cast<int>(ops.size()); // proxies: operators, then the volume
-    if (ops.empty()) {                                    // one draw: nothing to composite
+    const int volumeProxy = static_cast<int>(ops.size()); // proxies: operators, then the volume's
+    if (ops.empty()) { // one draw: nothing to composite, the slices are consecutive
+        uint32_t first = UINT32_MAX, last = 0;
+        for (std::size_t k = begin; k < end; ++k) {
+            for (const SliceDraw& d : slices.slices[k]) {
+                first = std::min(first, d.first);
+                last = std::max(last, d.first + d.count);
+            }
+        }
+        if (first >= last) return;
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, background);
         vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 1);
-        vkCmdDraw(cmd, static_cast<uint32_t>(slices.triangles.size()), 1, 0, 0);
+        vkCmdDraw(cmd, last - first, 1, first, 0);
         return;
     }
-    for (std::size_t k = 0; k < slices.slices.size(); ++k) {
+    for (std::size_t k = begin; k < end; ++k) {
         // Stencil references cycle through 1..255; before a value comes back,
         // clear the stencil so an old slice's mark cannot hide the background.
         if (k > 0 && k % 255 == 0) {
@@ -229,17 +261,24 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
         }
         vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK,
                                  static_cast<uint32_t>(k % 255 + 1));
+        // Operators first; the volume's boxes follow, consecutive: one draw.
+        uint32_t first = UINT32_MAX, last = 0;
         for (const SliceDraw& d : slices.slices[k]) {
-            if (d.proxy == volumeProxy) {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, background);
-            } else {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                  operatorPipelines[static_cast<std::size_t>(d.proxy)]);
-                VkDescriptorSet set = ops[static_cast<std::size_t>(d.proxy)]->set.set;
-                vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 1, 1,
-                                        &set, 0, nullptr);
+            if (d.proxy >= volumeProxy) {
+                first = std::min(first, d.first);
+                last = std::max(last, d.first + d.count);
+                continue;
             }
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                              operatorPipelines[static_cast<std::size_t>(d.proxy)]);
+            VkDescriptorSet set = ops[static_cast<std::size_t>(d.proxy)]->set.set;
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 1, 1,
+                                    &set, 0, nullptr);
             vkCmdDraw(cmd, d.count, 1, d.first, 0);
+        }
+        if (first < last) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, background);
+            vkCmdDraw(cmd, last - first, 1, first, 0);
         }
     }
 }
@@ -257,7 +296,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         bounds.lo = glm::min(bounds.lo, op->box.lo());
         bounds.hi = glm::max(bounds.hi, op->box.hi());
     }
-    proxies.push_back(boxProxy(volume.box));
+    // The volume's proxy: its occupied bricks (empty-space skipping).
+    for (const Box& box : occupiedFor(scene, volume))
+        proxies.push_back(boxProxy(box));
     const std::optional<Box> meshBounds = m_meshes->prepare(scene, 2.0 * volume.box.radius());
     const CameraMatrices cam =
         computeCamera(scene.camera, bounds, width, height, meshBounds ? &*meshBounds : nullptr);
@@ -335,8 +376,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.preintegrated = scene.render.classification == Classification::Preintegrated;
     variant.byLabel = volume.labels && !scene.labelTransfers.empty();
     variant.shading = scene.render.shading.enabled;
-    variant.lights = static_cast<int>(
-        std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
+    variant.lights =
+        static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
+    const gpu::DescriptorSet saturationSet = m_saturation->bind(m_color);
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
         for (const gpu::Image* target : targets)
             gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_UNDEFINED,
@@ -357,9 +399,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
             colors[t] =
                 clearedAttachment(targets[t]->view.get(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                                   VK_ATTACHMENT_STORE_OP_STORE);
-        const VkRenderingAttachmentInfo ds = clearedAttachment(
+        VkRenderingAttachmentInfo ds = clearedAttachment(
             m_depthStencil.view.get(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-            VK_ATTACHMENT_STORE_OP_DONT_CARE);
+            VK_ATTACHMENT_STORE_OP_STORE);
         VkRenderingAttachmentInfo depthAttachment = ds; // the meshes' depth, when there are any
         if (withMeshes) depthAttachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
         VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -369,13 +411,27 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         info.pColorAttachments = colors;
         info.pDepthAttachment = &depthAttachment;
         info.pStencilAttachment = &ds;
-        vkCmdBeginRendering(cmd, &info);
-        VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height),
-                            0.0f, 1.0f};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
-        if (!slices.triangles.empty()) recordSlices(cmd, slices, set.set, variant);
-        vkCmdEndRendering(cmd);
+        const VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height),
+                                  0.0f, 1.0f};
+        // Chunks of slices; between two, the saturation pass marks opaque
+        // pixels so the slices behind them are not shaded (early termination).
+        const std::size_t count = slices.slices.size();
+        for (std::size_t begin = 0; begin < std::max<std::size_t>(count, 1);
+             begin += kSlicesPerChunk) {
+            if (begin > 0) {
+                m_saturation->record(cmd, saturationSet.set, m_color, m_depthStencil);
+                for (std::size_t t = 0; t < volumeTargets; ++t)
+                    colors[t].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+                depthAttachment.loadOp = ds.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+            }
+            vkCmdBeginRendering(cmd, &info);
+            vkCmdSetViewport(cmd, 0, 1, &viewport);
+            vkCmdSetScissor(cmd, 0, 1, &info.renderArea);
+            if (count)
+                recordSlices(cmd, slices, set.set, variant, begin,
+                             std::min(count, begin + kSlicesPerChunk));
+            vkCmdEndRendering(cmd);
+        }
 
         for (std::size_t t = 0; t < targets.size(); ++t) {
             gpu::transition(cmd, *targets[t], VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,

@@ -10,7 +10,7 @@
 // Early ray termination: a pixel whose composited opacity reaches this takes
 // no more samples (slicing marks it in depth every few slices). What is left
 // behind it could add at most 1 - CW_OPAQUE_ALPHA to any channel.
-#define CW_OPAQUE_ALPHA 0.995
+#define CW_OPAQUE_ALPHA 0.999
 
 CW_NAMESPACE_BEGIN
 

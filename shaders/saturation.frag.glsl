@@ -1,0 +1,13 @@
+#version 460
+// Early ray termination for slicing: where the front-to-back composite is
+// already opaque, write depth 0 so that the slices behind fail the early depth
+// test and are never shaded. Elsewhere nothing is written.
+#extension GL_GOOGLE_include_directive : require
+#include "shared/frame.h"
+
+layout(set = 0, binding = 0) uniform sampler2D composite;
+
+void main() {
+    if (texelFetch(composite, ivec2(gl_FragCoord.xy), 0).a < CW_OPAQUE_ALPHA) discard;
+    gl_FragDepth = 0.0;
+}
