@@ -6,7 +6,9 @@
 #include "scene/animation.hpp"
 
 #include <chrono>
+#include <future>
 #include <memory>
+#include <optional>
 #include <regex>
 
 namespace cutaway::job {
@@ -62,6 +64,30 @@ std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& optio
     return frames;
 }
 
+namespace {
+
+// A rendered frame on its way to disk. Writing frame n overlaps rendering
+// frame n + 1 (docs/performance.md): the files are written on another thread
+// while the device renders the next frame.
+struct PendingWrite {
+    FrameEvent event;
+    Clock::time_point start;
+    std::future<void> done;
+};
+
+PendingWrite startWrite(FrameEvent event, Clock::time_point start, Image image, ExrOptions exr) {
+    auto write = [exrPath = event.exr, png = event.png, image = std::move(image),
+                  exr = std::move(exr)]() mutable {
+        if (!image.operatorIds.empty()) exr.channels.push_back({"operator_id", &image.operatorIds});
+        createOutputFolder(exrPath);
+        writeExr(exrPath, image, exr);
+        if (png) writePng(*png, image);
+    };
+    return {std::move(event), start, std::async(std::launch::async, std::move(write))};
+}
+
+} // namespace
+
 SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                                const SequenceOptions& options) {
     const auto runStart = Clock::now();
@@ -69,8 +95,38 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
     const std::vector<int> frames = framesToRender(scene, options);
     SequenceSummary summary;
     std::unique_ptr<FrameRenderer> renderer; // made on the first frame that needs it
+    bool halted = false;                     // a failed frame under --fail-fast
+    const auto report = [&](FrameEvent& event) {
+        if (event.kind == FrameEvent::Kind::Failed) {
+            ++summary.failed;
+            summary.anyBadInput = summary.anyBadInput || event.badInput;
+            halted = halted || options.failFast;
+        }
+        if (options.onFrame) options.onFrame(event);
+    };
+    std::optional<PendingWrite> pending; // the previous frame, being written
+    // Waits for the previous frame's files and reports it; frames are
+    // reported in order.
+    const auto finishPending = [&] {
+        if (!pending) return;
+        PendingWrite p = std::move(*pending);
+        pending.reset();
+        try {
+            p.done.get();
+            p.event.kind = FrameEvent::Kind::Rendered;
+            p.event.seconds = secondsSince(p.start);
+            ++summary.rendered;
+            summary.frameSeconds.push_back(p.event.seconds);
+        } catch (const Error& e) {
+            p.event.kind = FrameEvent::Kind::Failed;
+            p.event.error = e.what();
+            p.event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
+            p.event.seconds = secondsSince(p.start);
+        }
+        report(p.event);
+    };
 
-    for (std::size_t i = 0; i < frames.size(); ++i) {
+    for (std::size_t i = 0; i < frames.size() && !halted; ++i) {
         if (stop()) {
             summary.stopped = true;
             break;
@@ -87,18 +143,21 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             if (frameScene.output.png) event.png = previewPath(event.exr);
             if (options.skipExisting && std::filesystem::exists(event.exr) &&
                 (!event.png || std::filesystem::exists(*event.png))) {
+                finishPending();
                 event.kind = FrameEvent::Kind::Skipped;
                 ++summary.skipped;
-                if (options.onFrame) options.onFrame(event);
+                report(event);
                 continue;
             }
             if (!renderer) renderer = std::make_unique<FrameRenderer>(ctx);
             Image image = renderer->render(frameScene);
             event.notes = renderer->takeNotes();
+            finishPending();
             if (stop()) { // the frame in flight is discarded, never written
                 summary.stopped = true;
                 break;
             }
+            if (halted) break; // the previous frame failed under --fail-fast
             ExrOptions exr;
             exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
             exr.attributes = {{"cutaway/frame", std::to_string(event.frame)},
@@ -107,26 +166,17 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                               {"cutaway/scene", frameScene.document.dump()}};
             for (std::size_t n = 0; n < event.notes.size(); ++n)
                 exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
-            if (!image.operatorIds.empty())
-                exr.channels.push_back({"operator_id", &image.operatorIds});
-            createOutputFolder(event.exr);
-            writeExr(event.exr, image, exr);
-            if (event.png) writePng(*event.png, image);
-            event.kind = FrameEvent::Kind::Rendered;
-            event.seconds = secondsSince(frameStart);
-            ++summary.rendered;
-            summary.frameSeconds.push_back(event.seconds);
+            pending = startWrite(std::move(event), frameStart, std::move(image), std::move(exr));
         } catch (const Error& e) {
+            finishPending();
             event.kind = FrameEvent::Kind::Failed;
             event.error = e.what();
             event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
             event.seconds = secondsSince(frameStart);
-            ++summary.failed;
-            summary.anyBadInput = summary.anyBadInput || event.badInput;
+            report(event);
         }
-        if (options.onFrame) options.onFrame(event);
-        if (event.kind == FrameEvent::Kind::Failed && options.failFast) break;
     }
+    finishPending();
     summary.volumeUploads = renderer ? renderer->uploads() : 0;
     summary.totalSeconds = secondsSince(runStart);
     return summary;
