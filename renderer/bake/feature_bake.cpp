@@ -1,5 +1,6 @@
 #include "bake/feature_bake.hpp"
 
+#include "bake/volume_upload.hpp"
 #include "core/error.hpp"
 #include "edt_envelope_comp.spv.h"
 #include "edt_lines_comp.spv.h"
@@ -288,15 +289,7 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
         throw InputError("segment mask: the band width must be a finite number >= 0 mm");
 
     const VkExtent3D e{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
-    gpu::Image texture =
-        gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8_UNORM, e,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    std::vector<uint8_t> texels(indicator.size());
-    std::transform(indicator.begin(), indicator.end(), texels.begin(),
-                   [](uint8_t v) { return uint8_t(v ? 255 : 0); });
-    gpu::uploadImage(m_ctx, texture, texels.data(), texels.size(),
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    const gpu::Image texture = uploadMask(m_ctx, indicator, dims);
 
     Images images = makeImages(m_ctx, e);
     gpu::Image &a = images.a, &b = images.b, &out = images.out;

@@ -33,4 +33,21 @@ gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWind
     return image;
 }
 
+gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims) {
+    if (mask.size() != std::size_t(dims.x) * dims.y * dims.z)
+        throw RuntimeError("uploadMask: the mask does not match its dimensions");
+    std::vector<uint8_t> texels(mask.size());
+    std::transform(mask.begin(), mask.end(), texels.begin(),
+                   [](uint8_t m) { return m ? uint8_t(255) : uint8_t(0); });
+    VkExtent3D extent{static_cast<uint32_t>(dims.x), static_cast<uint32_t>(dims.y),
+                      static_cast<uint32_t>(dims.z)};
+    gpu::Image image =
+        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8_UNORM, extent,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    gpu::uploadImage(ctx, image, texels.data(), texels.size(),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    return image;
+}
+
 } // namespace cutaway::bake

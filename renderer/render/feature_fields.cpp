@@ -80,9 +80,7 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     if (a.mode == AlignmentMode::Surface) {
         // The object: above the threshold, or enclosed by it (segmentation.hpp).
         const std::vector<std::uint8_t> object = objectMask(*volume.scan, threshold(a, volume));
-        Volume mask = Volume::allocate(volume.dims, VoxelType::U8, volume.spacing);
-        std::memcpy(mask.data.data(), object.data(), object.size());
-        const gpu::Image objectTexture = bake::uploadVolume(m_ctx, mask, {0.0, 1.0});
+        const gpu::Image objectTexture = bake::uploadMask(m_ctx, object, volume.dims);
         field = m_baker.distanceField(objectTexture, volume.spacing, 0.5f);
     } else {
         std::vector<std::uint8_t> indicator;
