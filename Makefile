@@ -1,7 +1,8 @@
 # The README's two commands, plus a few conveniences.
 #   make demo   install what is missing, build, render the default scene (EXR + PNG)
 #   make test   install what is missing, build, run the whole test suite with ctest
-#   make bench  bake times at 256^3 (a table; the Table 1 frame benchmark comes later)
+#   make bench  the paper's Table 1 benchmark and VTK's CPU ray caster on the same work:
+#               tables, bench/results.json and the results section of docs/performance.md
 #   make gallery  render every gallery scene at 512^2: docs/gallery/*.png and docs/gallery.md
 BUILD ?= build
 JOBS ?= $(shell nproc)
@@ -30,8 +31,12 @@ test: build
 	@ctest --test-dir $(BUILD) --output-on-failure --timeout 900 -j $(JOBS)
 
 bench: configure
-	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_bench_bake
-	@$(BUILD)/bench/cutaway_bench_bake 256 3
+	@bash scripts/install-deps.sh --bench
+	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_bench
+	@rm -rf $(BUILD)/bench/vtk
+	@$(BUILD)/bench/cutaway_bench --vtk-dir $(BUILD)/bench/vtk $(BENCH_ARGS)
+	@xvfb-run -a /usr/bin/python3 bench/vtk_bench.py $(BUILD)/bench/vtk bench/results.json
+	@/usr/bin/python3 bench/report.py bench/results.json docs/performance.md
 
 gallery: configure
 	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway

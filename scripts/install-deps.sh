@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages cutaway needs to build, test and run.
 # Idempotent and quiet: when everything is present it prints nothing and
-# touches nothing. Used by `make demo`, `make test` and CI alike.
+# touches nothing. Used by `make demo`, `make test` and CI alike; `make bench`
+# passes --bench for the VTK comparison's packages as well.
 set -euo pipefail
 
 packages=(
@@ -12,8 +13,11 @@ packages=(
   libgtest-dev zlib1g-dev python3-jsonschema
   libtinygltf-dev
 )
-# Added when its feature lands (see third_party_notes.md): libbenchmark-dev
-# for bench/.
+# The benchmark's comparison with VTK's CPU ray caster (bench/vtk_bench.py)
+# needs VTK's Python module and an X server for its render window.
+if [[ "${1:-}" == "--bench" ]]; then
+  packages+=(python3-vtk9 xvfb xauth)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,55 @@
+#pragma once
+// Small helpers the benchmarks share: wall-clock timing, order statistics and
+// the process's peak resident memory. Benchmarks report; nothing here asserts.
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace cutaway::bench {
+
+inline double millisecondsOf(const std::function<void()>& body) {
+    const auto start = std::chrono::steady_clock::now();
+    body();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
+}
+
+struct Stats {
+    double median = 0.0, min = 0.0, max = 0.0;
+};
+
+inline Stats statsOf(std::vector<double> ms) {
+    if (ms.empty()) return {};
+    std::sort(ms.begin(), ms.end());
+    const std::size_t n = ms.size();
+    const double median = n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
+    return {median, ms.front(), ms.back()};
+}
+
+/// The median of `repeats` runs of `body`, in milliseconds.
+inline double medianMs(int repeats, const std::function<void()>& body) {
+    std::vector<double> ms;
+    for (int i = 0; i < repeats; ++i)
+        ms.push_back(millisecondsOf(body));
+    return statsOf(ms).median;
+}
+
+/// A line of /proc/self/status in MiB ("VmHWM", "VmRSS"); 0 where unavailable.
+inline double procStatusMiB(const std::string& key) {
+    std::ifstream status("/proc/self/status");
+    std::string line;
+    while (std::getline(status, line)) {
+        if (line.rfind(key + ":", 0) == 0) return std::stod(line.substr(key.size() + 1)) / 1024.0;
+    }
+    return 0.0;
+}
+
+/// Peak resident memory of this process so far, MiB.
+inline double peakRssMiB() {
+    return procStatusMiB("VmHWM");
+}
+
+} // namespace cutaway::bench

@@ -1,0 +1,171 @@
+#include "dataset_bench.hpp"
+
+#include "bake/operator_bake.hpp"
+#include "bench_util.hpp"
+#include "core/error.hpp"
+#include "job/render_job.hpp"
+#include "operators/operator_geometry.hpp"
+#include "render/feature_fields.hpp"
+#include "scene/scene.hpp"
+#include "vtk_spec.hpp"
+
+#include <cstdio>
+#include <fstream>
+
+namespace cutaway::bench {
+
+std::vector<SceneSetting> rowSettings(const DatasetEntry& entry, const std::string& alignment,
+                                      double spacing, const BenchOptions& o) {
+    std::vector<SceneSetting> settings{
+        {"/render/slice_spacing", spacing},
+        {"/render/size", nlohmann::json::array({o.width, o.height})},
+        {"/render/shading/enabled", true},
+    };
+    const nlohmann::json& a = entry.alignments.at(alignment);
+    if (a.is_null())
+        settings.push_back({"/operators", nlohmann::json::array()});
+    else
+        settings.push_back({"/operators/0/alignment", a});
+    settings.insert(settings.end(), o.extra.begin(), o.extra.end());
+    return settings;
+}
+
+namespace {
+
+// What a dataset costs before its first frame, each the median of a few runs:
+// reading, the upload, the gradients, and for the operator of the Table 1
+// rows its distance field (surface), segment mask (segment) and map. The
+// feature bakes go through the renderer's own cache, fresh each run, so they
+// include the CPU steps (Otsu, flood fill, label indicator) a user waits for.
+nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
+                         const BenchOptions& o) {
+    nlohmann::json bakes;
+    const Scene base = loadScene(entry.scene);
+    Volume scan;
+    std::shared_ptr<const Volume> labels;
+    bakes["read_ms"] = medianMs(1, [&] {
+        scan = job::loadSceneVolume(base);
+        labels = job::loadSceneLabels(base, scan);
+    });
+    const bake::ValueWindow window = job::sceneWindow(base, scan);
+    bake::GradientBaker gradients(ctx);
+    gpu::Image values;
+    bakes["upload_ms"] = medianMs(o.bakeRepeats, [&] {
+        values = gpu::Image{};
+        values = bake::uploadVolume(ctx, scan, window);
+    });
+    bakes["gradients_ms"] = medianMs(o.bakeRepeats, [&] { gradients.bake(values, scan.spacing); });
+    values = gpu::Image{};
+    const auto volume = std::make_shared<const Volume>(std::move(scan));
+    const render::GpuVolume gv =
+        render::prepareVolume(ctx, gradients, volume, window, std::nullopt, labels);
+    const auto featureMs = [&](const std::string& alignment) {
+        if (!entry.alignments.count(alignment)) return nlohmann::json();
+        const Scene s = loadScene(entry.scene, rowSettings(entry, alignment, 1.0, o));
+        return nlohmann::json(medianMs(o.bakeRepeats, [&] {
+            render::FeatureFields fields(ctx);
+            fields.fieldFor(s.operators.at(0), gv);
+        }));
+    };
+    bakes["distance_field_ms"] = featureMs("surface");
+    bakes["segment_mask_ms"] = featureMs("segment");
+    if (!base.operators.empty()) {
+        const OperatorSpec& op = base.operators[0];
+        const operators::LocalBox box = operators::deformedBounds(op.params, op.resolution);
+        bake::OperatorBaker baker(ctx);
+        bakes["operator_map_ms"] = medianMs(o.bakeRepeats, [&] {
+            baker.bake(op.params, glm::vec3(box.lo), glm::vec3(box.hi), op.resolution);
+        });
+        bakes["operator_map_texels"] = {op.resolution.x, op.resolution.y, op.resolution.z};
+    }
+    return bakes;
+}
+
+} // namespace
+
+std::vector<DatasetEntry> readTable(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw InputError(file.string() + ": cannot open the benchmark table");
+    const nlohmann::json doc = nlohmann::json::parse(in);
+    std::vector<DatasetEntry> entries;
+    for (const auto& d : doc.at("datasets")) {
+        DatasetEntry e;
+        e.dataset = d.at("dataset").get<std::string>();
+        e.scene = file.parent_path() / d.at("scene").get<std::string>();
+        for (const auto& [name, alignment] : d.at("alignments").items())
+            e.alignments[name] = alignment;
+        entries.push_back(std::move(e));
+    }
+    return entries;
+}
+
+nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
+                            const BenchOptions& o) {
+    Scene base;
+    try {
+        base = loadScene(entry.scene);
+    } catch (const InputError& e) {
+        return {{"skipped", e.what()}};
+    }
+    const nlohmann::json bakes = bakeTimes(ctx, entry, o);
+    double scanMiB = 0.0;
+    nlohmann::json dims;
+    VtkSpec vtk(entry.dataset, base, o);
+    {
+        const Volume scan = job::loadSceneVolume(base); // freed before the frames
+        scanMiB = double(scan.data.size()) / (1024.0 * 1024.0);
+        dims = {scan.dims.x, scan.dims.y, scan.dims.z};
+        vtk.setVolume(scan, job::sceneWindow(base, scan));
+    }
+
+    nlohmann::json records = nlohmann::json::array();
+    job::FrameRenderer renderer(ctx);
+    for (const std::string& alignment : o.alignments) {
+        if (!entry.alignments.count(alignment)) continue;
+        for (const double spacing : o.spacings) {
+            Scene scene = loadScene(entry.scene, rowSettings(entry, alignment, spacing, o));
+            const double azimuth = scene.camera.azimuthDeg;
+            const double firstMs = millisecondsOf([&] { renderer.render(scene); });
+            std::vector<double> ms;
+            for (int i = 1; i <= o.frames; ++i) {
+                scene.camera.azimuthDeg = azimuth + 360.0 * i / o.frames;
+                ms.push_back(millisecondsOf([&] { renderer.render(scene); }));
+                if (alignment == "none") vtk.addCamera(scene, spacing);
+            }
+            const Stats s = statsOf(ms);
+            nlohmann::json r;
+            r["renderer"] = "cutaway";
+            r["device"] = ctx.deviceName();
+            r["dataset"] = entry.dataset;
+            r["dims"] = dims;
+            r["alignment"] = alignment;
+            r["operator"] =
+                scene.operators.empty()
+                    ? "none"
+                    : scene.document.at("operators").at(0).at("type").get<std::string>();
+            r["width"] = o.width;
+            r["height"] = o.height;
+            r["slice_spacing"] = spacing;
+            r["frames"] = o.frames;
+            r["ms_median"] = s.median;
+            r["ms_min"] = s.min;
+            r["ms_max"] = s.max;
+            r["fps"] = 1000.0 / s.median;
+            r["first_frame_ms"] = firstMs;
+            records.push_back(r);
+            std::fprintf(stderr, "  %-12s %-8s d=%.1f  %8.1f ms median  (first %7.1f ms)\n",
+                         entry.dataset.c_str(), alignment.c_str(), spacing, s.median, firstMs);
+        }
+    }
+    if (!o.vtkDir.empty()) vtk.write(o.vtkDir);
+    const double peak = peakRssMiB();
+    for (auto& r : records) {
+        r["bake_ms"] = bakes;
+        r["scan_mib"] = scanMiB;
+        r["peak_rss_mib"] = peak;
+        r["memory_goal_mib"] = 4.0 * scanMiB + 300.0;
+    }
+    return {{"records", records}};
+}
+
+} // namespace cutaway::bench

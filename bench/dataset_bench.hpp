@@ -1,0 +1,48 @@
+#pragma once
+// One dataset of the Table 1 benchmark: its bake times, then per alignment and
+// slice spacing a warm-up frame and timed frames with the view rotating (a
+// turntable), as records for bench/results.json.
+#include "gpu/context.hpp"
+#include "scene/scene.hpp"
+
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace cutaway::bench {
+
+struct BenchOptions {
+    int width = 512;
+    int height = 512;
+    int frames = 5; ///< timed frames per row, after one warm-up
+    std::vector<double> spacings{1.0, 0.5};
+    std::vector<std::string> alignments{"none", "axis", "surface", "segment"};
+    int bakeRepeats = 3;
+    std::filesystem::path vtkDir;    ///< where to write the VTK comparison's spec; empty = none
+    std::vector<SceneSetting> extra; ///< --set overrides applied to every row (experiments)
+};
+
+/// A row of bench/table1.json: a scene with one operator, and the alignment
+/// each Table 1 row gives it (null: the operator removed).
+struct DatasetEntry {
+    std::string dataset;
+    std::filesystem::path scene;
+    std::map<std::string, nlohmann::json> alignments;
+};
+
+/// The --set overrides that make `entry`'s scene one Table 1 row.
+std::vector<SceneSetting> rowSettings(const DatasetEntry& entry, const std::string& alignment,
+                                      double spacing, const BenchOptions& options);
+
+/// Reads bench/table1.json; scene paths are resolved against its folder.
+std::vector<DatasetEntry> readTable(const std::filesystem::path& file);
+
+/// Runs one dataset. Returns {"records": [...]} with one record per alignment
+/// and spacing, each carrying the dataset's bake times and peak memory; or
+/// {"skipped": "why"} when the scene's files are absent.
+nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
+                            const BenchOptions& options);
+
+} // namespace cutaway::bench

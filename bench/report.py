@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""Writes the latest benchmark tables into docs/performance.md.
+
+Usage: report.py RESULTS_JSON MARKDOWN
+
+RESULTS_JSON is the list of records `make bench` writes (cutaway's frames,
+bakes and turntable, and VTK's frames). The tables replace whatever lies
+between the markers <!-- results:begin --> and <!-- results:end --> in
+MARKDOWN; the rest of the page (the paper's Table 1, the notes) is left as
+it is. Standard library only.
+"""
+import json
+import sys
+
+BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
+
+
+def dims(d):
+    return "x".join(str(v) for v in d)
+
+
+def ms(v):
+    return "-" if v is None else f"{v:.0f}"
+
+
+def frame_rows(records):
+    vtk = {(r["dataset"], r["slice_spacing"]): r for r in records if r.get("renderer") == "vtk"}
+    out = ["| dataset | dims | alignment | operator | d | median ms | min ms | max ms | fps |"
+           " VTK median ms (same work) |",
+           "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in records:
+        if r.get("renderer") != "cutaway" or r.get("kind") == "turntable":
+            continue
+        v = vtk.get((r["dataset"], r["slice_spacing"])) if r["alignment"] == "none" else None
+        out.append(f"| {r['dataset']} | {dims(r['dims'])} | {r['alignment']} | {r['operator']} |"
+                   f" {r['slice_spacing']:.1f} | {r['ms_median']:.0f} | {r['ms_min']:.0f} |"
+                   f" {r['ms_max']:.0f} | {r['fps']:.2f} | {ms(v['ms_median']) if v else ''} |")
+    return out
+
+
+def bake_rows(records):
+    out = ["| dataset | read | upload | gradients | distance field | segment mask |"
+           " operator map | peak RSS MiB | goal MiB (4 x scan + 300) |",
+           "|---|---|---|---|---|---|---|---|---|"]
+    seen = set()
+    for r in records:
+        if r.get("renderer") != "cutaway" or "bake_ms" not in r or r["dataset"] in seen:
+            continue
+        seen.add(r["dataset"])
+        b = r["bake_ms"]
+        out.append(f"| {r['dataset']} | {ms(b.get('read_ms'))} | {ms(b.get('upload_ms'))} |"
+                   f" {ms(b.get('gradients_ms'))} | {ms(b.get('distance_field_ms'))} |"
+                   f" {ms(b.get('segment_mask_ms'))} | {ms(b.get('operator_map_ms'))} |"
+                   f" {r['peak_rss_mib']:.0f} | {r['memory_goal_mib']:.0f} |")
+    return out
+
+
+def turntable_lines(records):
+    out = []
+    for t in records:
+        if t.get("kind") != "turntable":
+            continue
+        single = next((r["fps"] for r in records if r.get("renderer") == "cutaway"
+                       and r.get("kind") != "turntable" and r["dataset"] == t["dataset"]
+                       and r["alignment"] == "surface" and r["slice_spacing"] == 1.0), None)
+        out.append(f"Turntable: {t['dataset']}, surface-aligned operator, d = 1.0, "
+                   f"{t['frames']} frames written as {t['writes']}: {t['total_s']:.1f} s in all, "
+                   f"**{t['sustained_fps']:.2f} fps sustained** against "
+                   f"{single:.2f} fps for single frames." if single else "")
+    return out
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    with open(sys.argv[1]) as f:
+        records = json.load(f)
+    device = next((r.get("device") for r in records if r.get("device")), "unknown device")
+    vtk = next((r.get("vtk_version") for r in records if r.get("renderer") == "vtk"), None)
+    lines = [BEGIN, "",
+             f"Measured by `make bench` on {device}; times in ms per 512x512 frame "
+             "(median of the timed frames after a warm-up, the view turning between frames); "
+             "bake times in ms, each the median of 3 runs.", ""]
+    lines += frame_rows(records) + [""] + bake_rows(records) + [""] + turntable_lines(records)
+    if vtk:
+        lines += ["", f"VTK {vtk}: `vtkFixedPointVolumeRayCastMapper` on the same volume "
+                  "(normalized as cutaway uploads it), view, image size, sample distance, "
+                  "transfer function and shading, in the same run."]
+    lines += ["", END]
+    with open(sys.argv[2]) as f:
+        page = f.read()
+    if BEGIN not in page or END not in page:
+        sys.exit(f"report.py: {sys.argv[2]} has no {BEGIN} ... {END} section")
+    head, rest = page.split(BEGIN, 1)
+    tail = rest.split(END, 1)[1]
+    with open(sys.argv[2], "w") as f:
+        f.write(head + "\n".join(lines) + tail)
+    print(f"report.py: wrote the results section of {sys.argv[2]}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,80 @@
+#include "turntable_bench.hpp"
+
+#include "bench_util.hpp"
+#include "job/sequence.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace cutaway::bench {
+
+nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<DatasetEntry>& entries,
+                              const std::vector<std::string>& only, const BenchOptions& o,
+                              int frames) {
+    for (const DatasetEntry& entry : entries) {
+        if (!only.empty() && std::find(only.begin(), only.end(), entry.dataset) == only.end())
+            continue;
+        if (!entry.alignments.count("surface")) continue;
+        const std::filesystem::path dir =
+            std::filesystem::temp_directory_path() / ("cutaway_turntable_" + entry.dataset);
+        std::vector<SceneSetting> settings = rowSettings(entry, "surface", 1.0, o);
+        settings.push_back(
+            {"/animation",
+             {{"frames", {0, frames - 1}},
+              {"tracks",
+               {{{"target", "/camera/orbit/azimuth"},
+                 {"interpolation", "linear"},
+                 {"keys",
+                  {{{"frame", 0}, {"value", 0}}, {{"frame", frames}, {"value", 360}}}}}}}}});
+        settings.push_back({"/output/png", true});
+        Scene scene;
+        try {
+            scene = loadScene(entry.scene, settings);
+        } catch (const std::exception&) {
+            continue; // its scan is absent: try the next dataset
+        }
+        job::SequenceOptions options;
+        options.overrides.outputPattern = (dir / "frame_####.exr").string();
+        std::fprintf(stderr, "turntable: %s, %d frames to %s\n", entry.dataset.c_str(), frames,
+                     dir.c_str());
+        const job::SequenceSummary summary = job::renderSequence(ctx, scene, options);
+        std::filesystem::remove_all(dir);
+        std::vector<double> ms;
+        for (const double s : summary.frameSeconds)
+            ms.push_back(1000.0 * s);
+        const Stats s = statsOf(ms);
+        return {{"renderer", "cutaway"},
+                {"kind", "turntable"},
+                {"dataset", entry.dataset},
+                {"alignment", "surface"},
+                {"width", o.width},
+                {"height", o.height},
+                {"slice_spacing", 1.0},
+                {"frames", summary.rendered},
+                {"failed", summary.failed},
+                {"total_s", summary.totalSeconds},
+                {"sustained_fps", summary.rendered / summary.totalSeconds},
+                {"frame_ms_median", s.median},
+                {"writes", "EXR (half) + PNG per frame"}};
+    }
+    return {{"skipped", "no dataset with a surface row is present"}};
+}
+
+void printTurntable(const nlohmann::json& records) {
+    for (const nlohmann::json& t : records) {
+        if (t.value("kind", "") != "turntable") continue;
+        double single = 0.0;
+        for (const nlohmann::json& r : records) {
+            if (r.value("kind", "") != "turntable" && r["dataset"] == t["dataset"] &&
+                r["alignment"] == "surface" && r["slice_spacing"] == 1.0)
+                single = r["fps"].get<double>();
+        }
+        std::printf("\nturntable (%s, surface, d = 1.0, %d frames written as %s): %.1f s in all, "
+                    "%.2f fps sustained; single frames: %.2f fps\n",
+                    t["dataset"].get<std::string>().c_str(), t["frames"].get<int>(),
+                    t["writes"].get<std::string>().c_str(), t["total_s"].get<double>(),
+                    t["sustained_fps"].get<double>(), single);
+    }
+}
+
+} // namespace cutaway::bench

@@ -1,0 +1,203 @@
+"""Time VTK's CPU ray caster on the same work as cutaway's benchmark, for comparison.
+
+The C++ benchmark writes one spec per dataset, SPEC_DIR/vtk_<dataset>.json, next to
+a raw uint16 volume, and its own records into RESULTS_JSON. This script renders each
+spec with vtkFixedPointVolumeRayCastMapper, times rw.Render() per frame (the whole
+frame as a user would see it), saves SPEC_DIR/vtk_<dataset>.png (slice spacing 1.0,
+last frame) for comparing pictures by eye, replaces the "vtk" records in RESULTS_JSON
+and prints a table of VTK against cutaway (alignment "none").
+
+"Same work" means: the same volume (dims, spacing, origin), the same cameras
+(a turntable, explicit clipping range), image size, sample distance along the ray in
+mm, one ray per pixel, piecewise-linear transfer function with the same opacity unit
+distance, trilinear interpolation and Phong shading with a camera headlight.
+
+Usage: xvfb-run -a /usr/bin/python3 bench/vtk_bench.py SPEC_DIR RESULTS_JSON [--frames N]
+"""
+import argparse
+import glob
+import json
+import os
+import statistics
+import sys
+import time
+
+METHOD = "vtkFixedPointVolumeRayCastMapper"
+
+
+def build_scene(vtk, spec, spec_dir):
+    """Return (render window, volume mapper) for one spec, not yet rendered."""
+    nx, ny, nz = spec["dims"]
+    raw = os.path.join(spec_dir, spec["raw"])
+    if os.path.getsize(raw) != nx * ny * nz * 2:
+        sys.exit(f"vtk_bench: {raw} holds {os.path.getsize(raw)} bytes, "
+                 f"expected {nx * ny * nz * 2} for dims {spec['dims']} (uint16)")
+    reader = vtk.vtkImageReader2()
+    reader.SetFileName(raw)
+    reader.SetDataScalarTypeToUnsignedShort()
+    reader.SetDataByteOrderToLittleEndian()
+    reader.SetFileDimensionality(3)
+    reader.SetDataExtent(0, nx - 1, 0, ny - 1, 0, nz - 1)
+    reader.SetDataSpacing(*spec["spacing"])
+    reader.SetDataOrigin(*spec["origin"])
+    reader.FileLowerLeftOn()  # rows are stored y-ascending; without this VTK flips y
+    reader.Update()
+
+    color, opacity = vtk.vtkColorTransferFunction(), vtk.vtkPiecewiseFunction()
+    for p in spec["transfer"]:
+        color.AddRGBPoint(p["value"] * 65535.0, *p["color"])
+        opacity.AddPoint(p["value"] * 65535.0, p["alpha"])
+    prop = vtk.vtkVolumeProperty()
+    prop.SetColor(color)
+    prop.SetScalarOpacity(opacity)
+    prop.SetScalarOpacityUnitDistance(spec["opacity_unit_distance"])
+    prop.SetInterpolationTypeToLinear()
+    sh = spec["shading"]
+    prop.SetShade(1 if sh["enabled"] else 0)
+    prop.SetAmbient(sh["ambient"])
+    prop.SetDiffuse(sh["diffuse"])
+    prop.SetSpecular(sh["specular"])
+    prop.SetSpecularPower(sh["power"])
+
+    mapper = vtk.vtkFixedPointVolumeRayCastMapper()
+    mapper.SetInputConnection(reader.GetOutputPort())
+    mapper.AutoAdjustSampleDistancesOff()
+    if hasattr(mapper, "LockSampleDistanceToInputSpacingOff"):
+        mapper.LockSampleDistanceToInputSpacingOff()
+    mapper.SetImageSampleDistance(1.0)
+    mapper.SetMinimumImageSampleDistance(1.0)
+    mapper.SetMaximumImageSampleDistance(1.0)
+
+    volume = vtk.vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    ren = vtk.vtkRenderer()  # no lights added: VTK creates its default headlight
+    ren.SetBackground(*spec["background"])
+    ren.AddVolume(volume)
+    ren.SetActiveCamera(vtk.vtkCamera())  # our own camera: no automatic ResetCamera
+    rw = vtk.vtkRenderWindow()
+    rw.SetOffScreenRendering(1)
+    rw.SetSize(spec["width"], spec["height"])
+    rw.AddRenderer(ren)
+    return rw, ren, mapper
+
+
+def set_camera(cam, c):
+    cam.SetPosition(*c["position"])
+    cam.SetFocalPoint(*c["focal_point"])
+    cam.SetViewUp(*c["view_up"])
+    cam.SetViewAngle(c["view_angle"])
+    cam.SetParallelProjection(1 if c["parallel"] else 0)
+    if c["parallel"]:
+        cam.SetParallelScale(c["parallel_scale"])
+    cam.SetClippingRange(*c["clipping_range"])
+
+
+def save_png(vtk, rw, path):
+    grab = vtk.vtkWindowToImageFilter()
+    grab.SetInput(rw)
+    grab.ReadFrontBufferOff()
+    grab.Update()
+    writer = vtk.vtkPNGWriter()
+    writer.SetFileName(path)
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.Write()
+
+
+def bench_spec(vtk, spec, spec_dir, frames, version):
+    rw, ren, mapper = build_scene(vtk, spec, spec_dir)
+    cam, cams = ren.GetActiveCamera(), spec["cameras"]
+    frames = frames or spec.get("frames", len(cams))
+    records = []
+    for sd in spec["sample_distances"]:
+        mapper.SetSampleDistance(sd["mm"])
+        set_camera(cam, cams[0])
+        for _ in range(spec.get("warmup", 1)):
+            rw.Render()
+        ms = []
+        for i in range(frames):
+            set_camera(cam, cams[i % len(cams)])
+            t0 = time.perf_counter()
+            rw.Render()
+            ms.append((time.perf_counter() - t0) * 1000.0)
+        if abs(sd["slice_spacing"] - 1.0) < 1e-6:
+            save_png(vtk, rw, os.path.join(spec_dir, f"vtk_{spec['dataset']}.png"))
+        med = statistics.median(ms)
+        records.append({
+            "renderer": "vtk", "method": METHOD, "dataset": spec["dataset"],
+            "dims": list(spec["dims"]), "alignment": "none", "operator": "none",
+            "width": spec["width"], "height": spec["height"],
+            "slice_spacing": sd["slice_spacing"], "sample_distance_mm": sd["mm"],
+            "frames": frames, "ms_median": round(med, 1), "ms_min": round(min(ms), 1),
+            "ms_max": round(max(ms), 1), "fps": round(1000.0 / med, 2),
+            "vtk_version": version})
+        print(f"vtk_bench: {spec['dataset']} d={sd['slice_spacing']}: "
+              f"{med:.1f} ms median over {frames} frames", file=sys.stderr)
+    rw.Finalize()
+    return records
+
+
+def print_table(vtk_records, others, version):
+    def cutaway_ms(r):
+        for o in others:
+            if (o.get("renderer") == "cutaway" and o.get("alignment") == "none"
+                    and o.get("dataset") == r["dataset"]
+                    and abs(float(o.get("slice_spacing", -1)) - r["slice_spacing"]) < 1e-6):
+                return float(o["ms_median"])
+        return None
+
+    print(f"VTK {METHOD} {version}, same volume, view, image size, sample distance, "
+          "transfer function; ratio > 1 means cutaway is faster\n")
+    print("| dataset | dims | d | VTK ms median | VTK fps | cutaway ms median (none) | ratio |")
+    print("|---|---|---|---|---|---|---|")
+    for r in vtk_records:
+        c = cutaway_ms(r)
+        ratio = f"{r['ms_median'] / c:.2f}" if c else "-"
+        print(f"| {r['dataset']} | {'x'.join(map(str, r['dims']))} | {r['slice_spacing']:g} "
+              f"| {r['ms_median']:.1f} | {r['fps']:.2f} | {'-' if c is None else f'{c:.1f}'} "
+              f"| {ratio} |")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("spec_dir")
+    ap.add_argument("results_json")
+    ap.add_argument("--frames", type=int, default=0, help="timed frames (default: the spec's)")
+    args = ap.parse_args()
+    try:
+        import vtk
+    except ImportError:
+        print("vtk_bench: python3-vtk9 is not installed; skipping the VTK comparison",
+              file=sys.stderr)
+        return 0
+    specs = sorted(glob.glob(os.path.join(args.spec_dir, "vtk_*.json")))
+    if not specs:
+        print(f"vtk_bench: no vtk_*.json specs in {args.spec_dir}; nothing to do")
+        return 0
+    display = os.environ.get("DISPLAY", "")
+    num = display[1:].split(".")[0] if display.startswith(":") else None
+    if not display or (num and not os.path.exists("/tmp/.X11-unix/X" + num)):
+        # checked here because VTK abort()s the process when it cannot open the display
+        sys.exit(f"vtk_bench: no X server at DISPLAY={display!r}; VTK needs one for its "
+                 "render window: run xvfb-run -a /usr/bin/python3 bench/vtk_bench.py ...")
+    version = vtk.vtkVersion.GetVTKVersion()
+    mine = []
+    for path in specs:
+        with open(path) as f:
+            mine += bench_spec(vtk, json.load(f), os.path.dirname(path), args.frames, version)
+
+    others = []
+    if os.path.exists(args.results_json):
+        with open(args.results_json) as f:
+            others = [r for r in json.load(f) if r.get("renderer") != "vtk"]
+    tmp = args.results_json + ".tmp"
+    with open(tmp, "w") as f:
+        json.dump(others + mine, f, indent=1)
+        f.write("\n")
+    os.replace(tmp, args.results_json)
+    print_table(mine, others, version)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
