@@ -122,39 +122,47 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
     job::FrameRenderer renderer(ctx);
     for (const std::string& alignment : o.alignments) {
         if (!entry.alignments.count(alignment)) continue;
-        for (const double spacing : o.spacings) {
-            Scene scene = loadScene(entry.scene, rowSettings(entry, alignment, spacing, o));
-            const double azimuth = scene.camera.azimuthDeg;
-            const double firstMs = millisecondsOf([&] { renderer.render(scene); });
-            std::vector<double> ms;
-            for (int i = 1; i <= o.frames; ++i) {
-                scene.camera.azimuthDeg = azimuth + 360.0 * i / o.frames;
-                ms.push_back(millisecondsOf([&] { renderer.render(scene); }));
-                if (alignment == "none") vtk.addCamera(scene, spacing);
+        for (const std::string& method : o.methods) {
+            if (method == "raycast" && alignment != "none") continue;
+            for (const double spacing : o.spacings) {
+                std::vector<SceneSetting> settings = rowSettings(entry, alignment, spacing, o);
+                settings.push_back({"/render/method", method});
+                Scene scene = loadScene(entry.scene, settings);
+                const double azimuth = scene.camera.azimuthDeg;
+                const double firstMs = millisecondsOf([&] { renderer.render(scene); });
+                std::vector<double> ms;
+                for (int i = 1; i <= o.frames; ++i) {
+                    scene.camera.azimuthDeg = azimuth + 360.0 * i / o.frames;
+                    ms.push_back(millisecondsOf([&] { renderer.render(scene); }));
+                    if (alignment == "none" && method == "slicing") vtk.addCamera(scene, spacing);
+                }
+                const Stats s = statsOf(ms);
+                nlohmann::json r;
+                r["renderer"] = "cutaway";
+                r["device"] = ctx.deviceName();
+                r["dataset"] = entry.dataset;
+                r["dims"] = dims;
+                r["alignment"] = alignment;
+                r["method"] = method;
+                r["operator"] =
+                    scene.operators.empty()
+                        ? "none"
+                        : scene.document.at("operators").at(0).at("type").get<std::string>();
+                r["width"] = o.width;
+                r["height"] = o.height;
+                r["slice_spacing"] = spacing;
+                r["frames"] = o.frames;
+                r["ms_median"] = s.median;
+                r["ms_min"] = s.min;
+                r["ms_max"] = s.max;
+                r["fps"] = 1000.0 / s.median;
+                r["first_frame_ms"] = firstMs;
+                records.push_back(r);
+                std::fprintf(stderr,
+                             "  %-12s %-8s %-8s d=%.1f  %8.1f ms median  (first %7.1f ms)\n",
+                             entry.dataset.c_str(), alignment.c_str(), method.c_str(), spacing,
+                             s.median, firstMs);
             }
-            const Stats s = statsOf(ms);
-            nlohmann::json r;
-            r["renderer"] = "cutaway";
-            r["device"] = ctx.deviceName();
-            r["dataset"] = entry.dataset;
-            r["dims"] = dims;
-            r["alignment"] = alignment;
-            r["operator"] =
-                scene.operators.empty()
-                    ? "none"
-                    : scene.document.at("operators").at(0).at("type").get<std::string>();
-            r["width"] = o.width;
-            r["height"] = o.height;
-            r["slice_spacing"] = spacing;
-            r["frames"] = o.frames;
-            r["ms_median"] = s.median;
-            r["ms_min"] = s.min;
-            r["ms_max"] = s.max;
-            r["fps"] = 1000.0 / s.median;
-            r["first_frame_ms"] = firstMs;
-            records.push_back(r);
-            std::fprintf(stderr, "  %-12s %-8s d=%.1f  %8.1f ms median  (first %7.1f ms)\n",
-                         entry.dataset.c_str(), alignment.c_str(), spacing, s.median, firstMs);
         }
     }
     if (!o.vtkDir.empty()) vtk.write(o.vtkDir);

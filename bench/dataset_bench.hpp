@@ -19,6 +19,8 @@ struct BenchOptions {
     int frames = 5; ///< timed frames per row, after one warm-up
     std::vector<double> spacings{1.0, 0.5};
     std::vector<std::string> alignments{"none", "axis", "surface", "segment"};
+    /// render.method of each row; "raycast" only renders the rows without an operator.
+    std::vector<std::string> methods{"slicing", "raycast"};
     int bakeRepeats = 3;
     std::filesystem::path vtkDir;    ///< where to write the VTK comparison's spec; empty = none
     std::vector<SceneSetting> extra; ///< --set overrides applied to every row (experiments)

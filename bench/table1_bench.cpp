@@ -66,17 +66,17 @@ std::string msText(const json& v) {
 }
 
 void printFrames(const json& records) {
-    std::printf("\n| dataset | dims | alignment | operator | d | median ms | min ms | max ms | fps "
-                "| first frame ms |\n|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("\n| dataset | dims | alignment | operator | method | d | median ms | min ms | max "
+                "ms | fps | first frame ms |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const json& r : records) {
         if (r.value("kind", "") == "turntable") continue;
-        std::printf("| %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f |\n",
-                    r["dataset"].get<std::string>().c_str(), dimsText(r["dims"]).c_str(),
-                    r["alignment"].get<std::string>().c_str(),
-                    r["operator"].get<std::string>().c_str(), r["slice_spacing"].get<double>(),
-                    r["ms_median"].get<double>(), r["ms_min"].get<double>(),
-                    r["ms_max"].get<double>(), r["fps"].get<double>(),
-                    r["first_frame_ms"].get<double>());
+        std::printf(
+            "| %s | %s | %s | %s | %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.0f |\n",
+            r["dataset"].get<std::string>().c_str(), dimsText(r["dims"]).c_str(),
+            r["alignment"].get<std::string>().c_str(), r["operator"].get<std::string>().c_str(),
+            r["method"].get<std::string>().c_str(), r["slice_spacing"].get<double>(),
+            r["ms_median"].get<double>(), r["ms_min"].get<double>(), r["ms_max"].get<double>(),
+            r["fps"].get<double>(), r["first_frame_ms"].get<double>());
     }
 }
 
@@ -121,6 +121,10 @@ int main(int argc, char** argv) {
     app.add_option("--datasets", datasets, "Only these datasets (comma-separated)");
     app.add_option("--alignments", alignments, "Only these rows: none,axis,surface,segment");
     app.add_option("--spacings", spacings, "Slice spacings d (comma-separated)");
+    std::string methods = "slicing,raycast";
+    app.add_option(
+        "--methods", methods,
+        "render.method of the rows: slicing,raycast (raycast: rows without an operator)");
     app.add_option("--frames", o.frames, "Timed frames per row, after one warm-up")
         ->check(CLI::Range(1, 1000));
     app.add_option("--size", o.width, "Image width and height")->check(CLI::Range(16, 4096));
@@ -144,6 +148,7 @@ int main(int argc, char** argv) {
     o.height = o.width;
     o.vtkDir = vtkDir;
     if (!alignments.empty()) o.alignments = split(alignments);
+    o.methods = split(methods);
     o.spacings.clear();
     for (const std::string& s : split(spacings))
         o.spacings.push_back(std::stod(s));

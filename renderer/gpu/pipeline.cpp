@@ -48,12 +48,13 @@ PipelineLayoutHandle createPipelineLayout(const Context& ctx,
 }
 
 PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
-                                     VkShaderModule module) {
+                                     VkShaderModule module, const VkSpecializationInfo* constants) {
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
+    info.stage.pSpecializationInfo = constants;
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));

@@ -31,7 +31,8 @@ PipelineLayoutHandle createPipelineLayout(const Context& ctx,
                                           VkShaderStageFlags pushStages = 0);
 
 PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout,
-                                     VkShaderModule module);
+                                     VkShaderModule module,
+                                     const VkSpecializationInfo* constants = nullptr);
 
 /// What differs between cutaway's graphics pipelines. The rest is shared:
 /// triangle lists, no culling (slice winding depends on the view; tool models

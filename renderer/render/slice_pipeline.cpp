@@ -25,20 +25,21 @@ gpu::ShaderModuleHandle fragmentShader(const gpu::Context& ctx, SliceProxy proxy
 
 } // namespace
 
+SliceConstants::SliceConstants(const SliceVariant& v)
+    : m_values{v.preintegrated, v.byLabel, v.shading, static_cast<uint32_t>(v.lights),
+               static_cast<uint32_t>(v.alignment)} { // booleans are 32-bit VkBool32
+    for (uint32_t i = 0; i < 5; ++i)
+        m_entries[i] = {i, i * 4u, 4u};
+    m_info = {5, m_entries, sizeof m_values, m_values};
+}
+
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
                                         const SliceVariant& variant) {
     const SliceProxy proxy = variant.proxy;
     const bool withOperatorId = variant.withOperatorId;
     auto vert = gpu::createShaderModule(ctx, slice_vert_spv, sizeof(slice_vert_spv));
     auto frag = fragmentShader(ctx, proxy, withOperatorId);
-    // constant_id 0..4 of slice_common.h; booleans are 32-bit VkBool32.
-    const uint32_t constants[5] = {variant.preintegrated, variant.byLabel, variant.shading,
-                                   static_cast<uint32_t>(variant.lights),
-                                   static_cast<uint32_t>(variant.alignment)};
-    VkSpecializationMapEntry entries[5];
-    for (uint32_t i = 0; i < 5; ++i)
-        entries[i] = {i, i * 4u, 4u};
-    const VkSpecializationInfo specialization{5, entries, sizeof constants, constants};
+    const SliceConstants constants(variant);
     gpu::GraphicsPipelineParts parts;
     parts.vertex = vert.get();
     parts.fragment = frag.get();
@@ -87,7 +88,7 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
         parts.colorFormats.push_back(kOperatorIdFormat);
     }
     parts.extraDynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE};
-    parts.fragmentConstants = &specialization;
+    parts.fragmentConstants = constants.info();
     return gpu::createGraphicsPipeline(ctx, layout, parts);
 }
 

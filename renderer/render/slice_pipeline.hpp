@@ -38,6 +38,21 @@ struct SliceVariant {
     auto operator<=>(const SliceVariant&) const = default;
 };
 
+/// The specialization constants of `variant` (constant_id 0..4 of
+/// shaders/glsl/sample_common.h), for the slicing and ray-casting pipelines.
+class SliceConstants {
+public:
+    explicit SliceConstants(const SliceVariant& variant);
+    SliceConstants(const SliceConstants&) = delete;
+    SliceConstants& operator=(const SliceConstants&) = delete;
+    const VkSpecializationInfo* info() const { return &m_info; }
+
+private:
+    uint32_t m_values[5];
+    VkSpecializationMapEntry m_entries[5];
+    VkSpecializationInfo m_info;
+};
+
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
                                         const SliceVariant& variant);
 

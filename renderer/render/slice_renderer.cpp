@@ -142,6 +142,7 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
     m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
     m_meshes = std::make_unique<MeshPass>(ctx, m_setLayout.get());
     m_saturation = std::make_unique<SaturationPass>(ctx, m_nearest.get());
+    m_raycaster = std::make_unique<Raycaster>(ctx, m_sampler.get(), m_nearest.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
@@ -304,7 +305,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         computeCamera(scene.camera, bounds, width, height, meshBounds ? &*meshBounds : nullptr);
     const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
     const double minDepth = cam.perspective ? cam.nearPlane : -1e30;
-    const SliceSet slices = buildSlices(proxies, cam.eye, cam.forward, sliceMm, minDepth);
+    const bool raycast = scene.render.method == RenderMethod::Raycast;
+    const SliceSet slices =
+        raycast ? SliceSet{} : buildSlices(proxies, cam.eye, cam.forward, sliceMm, minDepth);
     m_stats = {slices.sliceCount, slices.triangles.size(), m_operators->bakes()};
 
     const std::size_t vertexBytes = slices.triangles.size() * sizeof(glm::vec3);
@@ -378,6 +381,11 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.shading = scene.render.shading.enabled;
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
+    if (raycast) {
+        Image image = renderRaycast(cam, volume, transfer, variant);
+        compositeUnder(image, scene.render.background);
+        return image;
+    }
     const gpu::DescriptorSet saturationSet = m_saturation->bind(m_color);
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
         for (const gpu::Image* target : targets)
@@ -469,15 +477,53 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
                 image.rgba[i + c] += t * meshes.rgba[i + c];
         }
     }
+    compositeUnder(image, scene.render.background);
+    return image;
+}
+
+Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
+                                   const gpu::Image& transfer, const SliceVariant& variant) {
+    const uint32_t width = m_color.extent.width, height = m_color.extent.height;
+    if (!m_rayTarget.image || m_rayTarget.extent.width != width ||
+        m_rayTarget.extent.height != height) {
+        m_rayTarget = gpu::createImage(
+            m_ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R32G32B32A32_SFLOAT, {width, height, 1},
+            VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        m_rayReadback = gpu::createBuffer(m_ctx, 16ull * width * height,
+                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    }
+    // The rays march through the bounds of the occupied bricks.
+    Box occupied{glm::dvec3(1.0), glm::dvec3(-1.0)}; // empty: every ray misses
+    for (const Box& b : m_occupied) {
+        occupied.lo = occupied.lo.x > occupied.hi.x ? b.lo : glm::min(occupied.lo, b.lo);
+        occupied.hi = glm::max(occupied.hi, b.hi);
+    }
+    const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
+                                   volume.values.view.get(), volume.gradients.view.get(),
+                                   transfer.view.get(),      m_classes.view.get()};
+    const gpu::DescriptorSet set = m_raycaster->bind(inputs, m_rayTarget);
+    m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        m_raycaster->record(cmd, set.set, m_rayTarget, cam, occupied, variant);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        region.imageExtent = m_rayTarget.extent;
+        vkCmdCopyImageToBuffer(cmd, m_rayTarget.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                               m_rayReadback.buffer.get(), 1, &region);
+        gpu::barrierTransferToHost(cmd);
+    });
+    Image image(static_cast<int>(width), static_cast<int>(height));
+    std::memcpy(image.rgba.data(), m_rayReadback.mapped, image.rgba.size() * sizeof(float));
+    return image;
+}
+
+void SliceRenderer::compositeUnder(Image& image, glm::vec4 background) {
     // The background lies behind everything: composite it "under" the volume.
-    const glm::vec4 bg = scene.render.background;
-    const glm::vec4 bgPremultiplied(glm::vec3(bg) * bg.w, bg.w);
-    for (std::size_t i = 0; i < count; i += 4) {
+    const glm::vec4 premultiplied(glm::vec3(background) * background.w, background.w);
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
         const float t = 1.0f - image.rgba[i + 3];
         for (int c = 0; c < 4; ++c)
-            image.rgba[i + c] += t * bgPremultiplied[c];
+            image.rgba[i + c] += t * premultiplied[c];
     }
-    return image;
 }
 
 } // namespace cutaway::render

@@ -15,6 +15,7 @@
 #include "render/gpu_operators.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/mesh_pass.hpp"
+#include "render/raycaster.hpp"
 #include "render/saturation_pass.hpp"
 #include "render/slice_pipeline.hpp"
 #include "render/slicer.hpp"
@@ -54,6 +55,10 @@ private:
     /// The boxes of the volume's occupied bricks for this scene's transfer
     /// functions (render/occupancy.hpp), remade when those change.
     const std::vector<Box>& occupiedFor(const Scene& scene, const GpuVolume& volume);
+    /// render.method "raycast": the frame by ray casting, over nothing.
+    Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
+                        const gpu::Image& transfer, const SliceVariant& variant);
+    static void compositeUnder(Image& image, glm::vec4 background);
     /// The pipeline of `variant`, made on first use (a few per scene).
     VkPipeline pipelineFor(const SliceVariant& variant);
 
@@ -67,6 +72,9 @@ private:
     std::unique_ptr<OperatorStack> m_operators;
     std::unique_ptr<MeshPass> m_meshes;
     std::unique_ptr<SaturationPass> m_saturation;
+    std::unique_ptr<Raycaster> m_raycaster;
+    gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
+    gpu::Buffer m_rayReadback;
     std::vector<Box> m_occupied;
     std::vector<double> m_occupiedKey;
     /// Slices between two saturation passes: fewer means earlier termination

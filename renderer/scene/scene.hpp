@@ -117,6 +117,12 @@ enum class Classification { Preintegrated, Post };
 ///                 so boxes may overlap; costs a CPU resample when they change
 enum class Composition { Separate, Sequential };
 
+/// /render/method: how the volume integral is taken (docs/performance.md).
+///   "slicing": view-aligned slices with the stencil pass (paper section 5; default)
+///   "raycast": a compute pass marching each pixel's ray through the same
+///              sample points; scenes without operators, meshes or operator_id
+enum class RenderMethod { Slicing, Raycast };
+
 /// /render
 struct RenderSettings {
     int width = 512;           ///< /render/size[0], [1, 16384]
@@ -125,6 +131,7 @@ struct RenderSettings {
     glm::vec4 background{0, 0, 0, 1}; ///< /render/background: RGB(A) or "transparent" (0,0,0,0)
     Classification classification = Classification::Preintegrated;
     Composition composition = Composition::Separate;
+    RenderMethod method = RenderMethod::Slicing;
     Shading shading;
 };
 

@@ -32,6 +32,8 @@ namespace scene_detail {
 ///                   the transfer function at its front sample only.
 ///  * operator_composition "separate" or "sequential", default "separate": see
 ///                   Composition in scene.hpp
+///  * method         "slicing" or "raycast", default "slicing": see RenderMethod in
+///                   scene.hpp
 ///  * shading        object, default {}: Blinn-Phong material of every sample
 ///    * enabled      boolean, default true: false shows the transfer function's colours unlit
 ///    * diffuse      number, in [0, 1], default 0.8
@@ -70,6 +72,9 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
         reader.string("operator_composition", "separate", {"separate", "sequential"});
     render.composition =
         composition == "sequential" ? Composition::Sequential : Composition::Separate;
+
+    const std::string method = reader.string("method", "slicing", {"slicing", "raycast"});
+    render.method = method == "raycast" ? RenderMethod::Raycast : RenderMethod::Slicing;
 
     reader.object("shading", [&](JsonReader& shading) {
         Shading& s = render.shading;
@@ -171,6 +176,16 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
             diagnostics.error("/transfer/labels",
                               "classification by label needs \"operator_composition\": "
                               "\"separate\" when there are several operators");
+    }
+    // Ray casting integrates the untouched volume only.
+    if (scene.render.method == RenderMethod::Raycast) {
+        const char* what = !scene.operators.empty() ? "operators"
+                           : !scene.meshes.empty()  ? "meshes"
+                           : scene.output.operatorId ? "\"output\": {\"operator_id\": true}"
+                                                     : nullptr;
+        if (what)
+            diagnostics.error("/render/method", std::string("\"raycast\" renders scenes without ") +
+                                                    what + "; use \"slicing\"");
     }
     // Relative output patterns (the default too) resolve against the scene's folder.
     const std::filesystem::path pattern(scene.output.pattern);

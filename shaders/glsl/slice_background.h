@@ -9,17 +9,12 @@ void main() {
     vec3 toEye = toEyeFrom(worldPos);
     float obliquity = obliquityOf(toEye);
     float stepMm = u.viewDir.w * obliquity;
-    float front = texture(volumeTex, tc).r;
+    float front = textureLod(volumeTex, tc, 0.0).r;
     float back = front;
     vec3 shadeAt = tc; // the slab's middle when pre-integrated
     if (cwPreintegrated) {
-        back = texture(volumeTex, toTexture(worldPos - toEye * stepMm)).r;
+        back = textureLod(volumeTex, toTexture(worldPos - toEye * stepMm), 0.0).r;
         shadeAt = toTexture(worldPos - toEye * (0.5 * stepMm));
     }
-    vec4 c = classifySlab(front, back, obliquity, classLayer(tc));
-    if (c.a <= 0.0) {
-        emit(vec4(0.0), 0.0);
-        return;
-    }
-    emit(shade(c, texture(gradientTex, shadeAt), toEye), CW_ID_BACKGROUND);
+    emit(backgroundSlab(front, back, tc, shadeAt, toEye, obliquity), CW_ID_BACKGROUND);
 }

@@ -1,31 +1,9 @@
-// GLSL only: the resources and steps every slicing fragment shader shares.
-// (Math that the C++ tests also run lives in shaders/shared/.)
+// GLSL only: what every slicing fragment shader shares: the per-sample steps
+// (sample_common.h) and the outputs, written by emit().
 #ifndef CUTAWAY_SLICE_COMMON_H
 #define CUTAWAY_SLICE_COMMON_H
 
-// What a frame fixes, as specialization constants (see SliceVariant in
-// render/slice_pipeline.hpp): the compiler drops the paths a frame does not
-// take. On lavapipe a branch on a uniform still costs both sides, so these
-// halve the cost of a fragment.
-layout(constant_id = 0) const bool cwPreintegrated = false;
-layout(constant_id = 1) const bool cwByLabel = false;
-layout(constant_id = 2) const bool cwShading = true;
-layout(constant_id = 3) const int cwLightCount = 0;
-layout(constant_id = 4) const int cwAlignment = 0; // operator proxies: CW_ALIGN_*
-#define CW_SHADING_ON(u) cwShading
-#define CW_LIGHT_COUNT(u) cwLightCount
-
-#include "shared/frame.h"
-#include "shared/shading.h"
-
-layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms u; };
-layout(set = 0, binding = 1) uniform sampler3D volumeTex;
-layout(set = 0, binding = 2) uniform sampler3D gradientTex;
-// One classification table per layer: layer 0 is /transfer, layer i + 1
-// /transfer/labels/i. classTex holds each voxel's layer (classification by
-// label; a 1^3 texture of 0 without labels, and u.flags.w = 0).
-layout(set = 0, binding = 3) uniform sampler2DArray transferTex;
-layout(set = 0, binding = 4) uniform usampler3D classTex;
+#include "glsl/sample_common.h"
 
 layout(location = 0) out vec4 outColor;
 #ifdef CW_WRITE_ID
@@ -44,45 +22,6 @@ void emit(vec4 color, float code) {
 #ifdef CW_WRITE_ID
     outId = color.a >= CW_ID_MIN_ALPHA ? vec4(code, 0.0, 0.0, 1.0) : vec4(0.0);
 #endif
-}
-
-vec3 toTexture(vec3 world) { return (u.worldToTexture * vec4(world, 1.0)).xyz; }
-
-vec3 toEyeFrom(vec3 world) {
-    return u.eye.w > 0.5 ? normalize(u.eye.xyz - world) : -u.viewDir.xyz;
-}
-
-// 1 / cos of the angle between this pixel's ray and the view direction: planes
-// are u.viewDir.w apart along the view, an oblique ray crosses more material.
-float obliquityOf(vec3 toEye) { return 1.0 / max(dot(-toEye, u.viewDir.xyz), 1e-3); }
-
-// The classification layer of the voxel nearest to texture coordinate tc.
-float classLayer(vec3 tc) {
-    if (!cwByLabel) return 0.0;
-    ivec3 dims = textureSize(classTex, 0);
-    ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
-    return float(texelFetch(classTex, voxel, 0).r);
-}
-
-// Premultiplied colour of the slab from `front` to `back` (normalized values),
-// classified by table `layer`.
-vec4 classifySlab(float front, float back, float obliquity, float layer) {
-    if (cwPreintegrated) {
-        vec2 at = vec2(front, back) * u.valueToTf.x + u.valueToTf.y;
-        vec4 slab = texture(transferTex, vec3(at, layer));
-        if (slab.a <= 0.0) return vec4(0.0);
-        float alpha = correctOpacity(slab.a, obliquity); // the table is for an axial slab
-        return vec4(slab.rgb * (alpha / slab.a), alpha);
-    }
-    vec4 c = texture(transferTex, vec3(front * u.valueToTf.x + u.valueToTf.y, 0.5, layer));
-    if (c.a <= 0.0) return vec4(0.0);
-    float alpha = correctOpacity(c.a, u.viewDir.w * obliquity / u.valueToTf.z);
-    return vec4(c.rgb * alpha, alpha);
-}
-
-vec4 shade(vec4 sampleColor, vec4 gradient, vec3 toEye) {
-    Lighting light = lightSample(gradient, toEye, u);
-    return vec4(sampleColor.rgb * light.diffuse + light.specular * sampleColor.a, sampleColor.a);
 }
 
 #endif

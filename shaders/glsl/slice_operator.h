@@ -17,7 +17,7 @@ layout(set = 1, binding = 1) uniform sampler3D operatorMap;
 layout(set = 1, binding = 2) uniform sampler3D featureTex;
 
 vec4 mapAt(vec3 local) {
-    return texture(operatorMap, (local - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz));
+    return textureLod(operatorMap, (local - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz), 0.0);
 }
 
 // xyz: the probe p0 in the world; w: signed distance to the cut (local units).
@@ -35,7 +35,7 @@ int alignment() { return cwAlignment; } // op.align.x, fixed per pipeline
 float maskAt(vec3 tc) {
     int mode = alignment();
     if (mode == CW_ALIGN_AXIS) return 0.0;
-    vec4 f = texture(featureTex, tc);
+    vec4 f = textureLod(featureTex, tc, 0.0);
     if (mode == CW_ALIGN_SURFACE) return surfaceMask(f.w, op.align.y, op.align.z);
     ivec3 dims = textureSize(featureTex, 0);
     ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
@@ -68,7 +68,7 @@ Resolved resolve(vec3 world) {
 vec4 featureGradient(vec4 g, vec3 tc, bool moved) {
     int mode = alignment();
     if (mode == CW_ALIGN_AXIS) return g;
-    vec4 f = texture(featureTex, tc);
+    vec4 f = textureLod(featureTex, tc, 0.0);
     if (mode == CW_ALIGN_SURFACE) {
         float beta = surfaceBeta(f.w, op.align.y, op.align.z);
         if (beta == 0.0) return g;
@@ -95,12 +95,12 @@ void main() {
     }
     bool masked = front.which == CW_CASE_MASKED;
     float layer = classLayer(front.tc);
-    float frontValue = texture(volumeTex, front.tc).r;
+    float frontValue = textureLod(volumeTex, front.tc, 0.0).r;
     float backValue = frontValue;
     vec3 shadePoint = worldPos; // the slab's middle when pre-integrated, as for the background
     if (cwPreintegrated) {
         Resolved back = resolve(worldPos - toEye * stepMm);
-        if (back.which != CW_CASE_EMPTY) backValue = texture(volumeTex, back.tc).r;
+        if (back.which != CW_CASE_EMPTY) backValue = textureLod(volumeTex, back.tc, 0.0).r;
         shadePoint = worldPos - toEye * (0.5 * stepMm);
     }
     vec4 c = classifySlab(frontValue, backValue, obliquity, layer);
@@ -113,7 +113,7 @@ void main() {
     if (middle.which == CW_CASE_EMPTY || (middle.which == CW_CASE_MASKED) != masked)
         middle = front; // the middle fell elsewhere: shade at the front
     if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
-        vec4 g = featureGradient(texture(gradientTex, middle.tc), middle.tc, false);
+        vec4 g = featureGradient(textureLod(gradientTex, middle.tc, 0.0), middle.tc, false);
         vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
         emit(shade(c, n, toEye), CW_ID_BACKGROUND);
         return;
@@ -136,7 +136,7 @@ void main() {
     }
     mat3 a = mat3(op.localToWorld);
     mat3 aInvT = transpose(mat3(op.worldToLocal));
-    vec4 g = featureGradient(texture(gradientTex, middle.tc), middle.tc, true);
+    vec4 g = featureGradient(textureLod(gradientTex, middle.tc, 0.0), middle.tc, true);
     vec3 carried = aInvT * (transpose(jacobian) * (transpose(a) * g.xyz)); // Eq. 5
     vec3 cut = aInvT * cutGradient; // points into the material
     float omega = op.band.x > 0.0 ? 1.0 - clamp(middle.cutW / op.band.x, 0.0, 1.0) : 0.0;

@@ -105,9 +105,10 @@ TEST(SceneLoad, EveryExampleSceneParses) {
         ASSERT_GE(found.size(), 1u) << message;
         ASSERT_LE(found.size(), 2u) << message;
         EXPECT_NE(found[0].find(": /volume/file: no such file: "), std::string::npos) << message;
-        if (found.size() == 2)
+        if (found.size() == 2) {
             EXPECT_NE(found[1].find(": /labels/file: no such file: "), std::string::npos)
                 << message;
+        }
         for (const std::string& line : found)
             EXPECT_NE(line.find("shared/data/"), std::string::npos) << message;
         skipped.push_back(file.filename().string());
