@@ -31,11 +31,13 @@ bool inVolume(vec3 tc) { return all(greaterThanEqual(tc, vec3(0.0))) && all(less
 
 int alignment() { return cwAlignment; } // op.align.x, fixed per pipeline
 
-// M at texture coordinate tc (0 for axis alignment).
-float maskAt(vec3 tc) {
+// M at texture coordinate tc (0 for axis alignment); `f` receives the
+// feature texel there, which featureGradient reads again.
+float maskAt(vec3 tc, out vec4 f) {
     int mode = alignment();
+    f = vec4(0.0);
     if (mode == CW_ALIGN_AXIS) return 0.0;
-    vec4 f = textureLod(featureTex, tc, 0.0);
+    f = textureLod(featureTex, tc, 0.0);
     if (mode == CW_ALIGN_SURFACE) return surfaceMask(f.w, op.align.y, op.align.z);
     ivec3 dims = textureSize(featureTex, 0);
     ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
@@ -46,6 +48,7 @@ struct Resolved {
     int which;    // CW_CASE_*
     vec3 tc;      // texture coordinate of p (transformed or masked)
     float cutW;   // the map's signed cut distance at p'
+    vec4 feature; // the feature texel at tc (alignment other than axis)
 };
 
 // Eq. 3 and 4 for the point p' = world.
@@ -55,20 +58,23 @@ Resolved resolve(vec3 world) {
     vec3 tcPrime = toTexture(world);
     bool p0Valid = p0.w > 0.0 && inVolume(tc0);
     bool primeIn = inVolume(tcPrime);
-    float m0 = p0Valid ? maskAt(tc0) : 0.0;
-    float mPrime = primeIn ? maskAt(tcPrime) : 0.0;
+    vec4 f0, fPrime;
+    float m0 = maskAt(tc0, f0);
+    float mPrime = maskAt(tcPrime, fPrime);
     Resolved r;
-    r.which = featureCase(p0Valid, m0, primeIn, mPrime);
-    r.tc = r.which == CW_CASE_MASKED ? tcPrime : tc0;
+    r.which = featureCase(p0Valid, p0Valid ? m0 : 0.0, primeIn, primeIn ? mPrime : 0.0);
+    bool masked = r.which == CW_CASE_MASKED;
+    r.tc = masked ? tcPrime : tc0;
+    r.feature = masked ? fPrime : f0;
     r.cutW = p0.w;
     return r;
 }
 
-// The source-space gradient at p (data gradient, with Eq. 9 / 10 applied).
-vec4 featureGradient(vec4 g, vec3 tc, bool moved) {
+// The source-space gradient at p (data gradient, with Eq. 9 / 10 applied);
+// f is the feature texel at p.
+vec4 featureGradient(vec4 g, vec4 f, bool moved) {
     int mode = alignment();
     if (mode == CW_ALIGN_AXIS) return g;
-    vec4 f = textureLod(featureTex, tc, 0.0);
     if (mode == CW_ALIGN_SURFACE) {
         float beta = surfaceBeta(f.w, op.align.y, op.align.z);
         if (beta == 0.0) return g;
@@ -109,11 +115,13 @@ void main() {
         return;
     }
 
-    Resolved middle = resolve(shadePoint);
+    // Pre-integrated slabs are shaded at their middle; post-classified
+    // samples at the front, already resolved.
+    Resolved middle = cwPreintegrated ? resolve(shadePoint) : front;
     if (middle.which == CW_CASE_EMPTY || (middle.which == CW_CASE_MASKED) != masked)
         middle = front; // the middle fell elsewhere: shade at the front
     if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
-        vec4 g = featureGradient(textureLod(gradientTex, middle.tc, 0.0), middle.tc, false);
+        vec4 g = featureGradient(textureLod(gradientTex, middle.tc, 0.0), middle.feature, false);
         vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
         emit(shade(c, n, toEye), CW_ID_BACKGROUND);
         return;
@@ -136,7 +144,7 @@ void main() {
     }
     mat3 a = mat3(op.localToWorld);
     mat3 aInvT = transpose(mat3(op.worldToLocal));
-    vec4 g = featureGradient(textureLod(gradientTex, middle.tc, 0.0), middle.tc, true);
+    vec4 g = featureGradient(textureLod(gradientTex, middle.tc, 0.0), middle.feature, true);
     vec3 carried = aInvT * (transpose(jacobian) * (transpose(a) * g.xyz)); // Eq. 5
     vec3 cut = aInvT * cutGradient; // points into the material
     float omega = op.band.x > 0.0 ? 1.0 - clamp(middle.cutW / op.band.x, 0.0, 1.0) : 0.0;
