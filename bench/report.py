@@ -25,15 +25,15 @@ def ms(v):
 
 def frame_rows(records):
     vtk = {(r["dataset"], r["slice_spacing"]): r for r in records if r.get("renderer") == "vtk"}
-    out = ["| dataset | dims | alignment | operator | d | median ms | min ms | max ms | fps |"
-           " VTK median ms (same work) |",
-           "|---|---|---|---|---|---|---|---|---|---|"]
+    out = ["| dataset | dims | alignment | operator | method | d | median ms | min ms | max ms |"
+           " fps | VTK median ms (same work) |",
+           "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in records:
         if r.get("renderer") != "cutaway" or r.get("kind") == "turntable":
             continue
         v = vtk.get((r["dataset"], r["slice_spacing"])) if r["alignment"] == "none" else None
         out.append(f"| {r['dataset']} | {dims(r['dims'])} | {r['alignment']} | {r['operator']} |"
-                   f" {r['slice_spacing']:.1f} | {r['ms_median']:.0f} | {r['ms_min']:.0f} |"
+                   f" {r.get('method', 'slicing')} | {r['slice_spacing']:.1f} | {r['ms_median']:.0f} | {r['ms_min']:.0f} |"
                    f" {r['ms_max']:.0f} | {r['fps']:.2f} | {ms(v['ms_median']) if v else ''} |")
     return out
 
