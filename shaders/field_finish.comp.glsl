@@ -8,7 +8,10 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/feature_bake.h"
 
-layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+// Each invocation walks kColumn voxels along z, keeping the field below, at
+// and above the voxel: 5 loads per voxel instead of 7.
+#define kColumn 16
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 0) uniform sampler3D sourceTex;
 layout(set = 0, binding = 1, r32f) uniform readonly image3D srcImage;
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image3D outImage;
@@ -20,12 +23,19 @@ float fieldAt(ivec3 p) {
 }
 
 void main() {
-    ivec3 id = ivec3(gl_GlobalInvocationID);
+    ivec3 id = ivec3(gl_GlobalInvocationID.xy, gl_GlobalInvocationID.z * kColumn);
     if (any(greaterThanEqual(id, params.dims))) return;
-    vec3 delta = vec3(fieldAt(id + ivec3(1, 0, 0)) - fieldAt(id - ivec3(1, 0, 0)),
-                      fieldAt(id + ivec3(0, 1, 0)) - fieldAt(id - ivec3(0, 1, 0)),
-                      fieldAt(id + ivec3(0, 0, 1)) - fieldAt(id - ivec3(0, 0, 1)));
-    float value = fieldAt(id);
-    if (params.mode == 1) value = maskEncode(value, texelFetch(sourceTex, id, 0).r > 0.5);
-    imageStore(outImage, id, vec4(unitOrZero(delta * params.halfInvSpacing), value));
+    float below = fieldAt(id - ivec3(0, 0, 1));
+    float here = fieldAt(id);
+    for (int i = 0; i < kColumn && id.z + i < params.dims.z; ++i) {
+        ivec3 p = id + ivec3(0, 0, i);
+        float above = fieldAt(p + ivec3(0, 0, 1));
+        vec3 delta = vec3(fieldAt(p + ivec3(1, 0, 0)) - fieldAt(p - ivec3(1, 0, 0)),
+                          fieldAt(p + ivec3(0, 1, 0)) - fieldAt(p - ivec3(0, 1, 0)), above - below);
+        float value = here;
+        if (params.mode == 1) value = maskEncode(value, texelFetch(sourceTex, p, 0).r > 0.5);
+        imageStore(outImage, p, vec4(unitOrZero(delta * params.halfInvSpacing), value));
+        below = here;
+        here = above;
+    }
 }

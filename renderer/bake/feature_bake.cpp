@@ -90,6 +90,11 @@ void storageBarrier(VkCommandBuffer cmd) {
 
 /// Records the passes in order in one submission: the scratch images and `out`
 /// go to GENERAL first, `out` ends SHADER_READ_ONLY_OPTIMAL. Blocks until done.
+// field_finish.comp: 8x8 invocations per group, each a column of 16 voxels.
+glm::uvec3 finishGroups(glm::ivec3 dims) {
+    return {groups(dims.x, 8), groups(dims.y, 8), groups(dims.z, 16)};
+}
+
 void runPasses(const gpu::Context& ctx, VkPipelineLayout layout,
                const std::vector<const gpu::Image*>& scratch, const gpu::Image& out,
                const std::vector<Pass>& passes) {
@@ -271,10 +276,7 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
     passes[2] = {m_envelope.get(), zSet.set, p, {groups(dims.x, 8), groups(dims.y, 8), 1}};
     p.axis = 0;
     p.mode = 0;
-    passes[3] = {m_finish.get(),
-                 finishSet.set,
-                 p,
-                 {groups(dims.x, 4), groups(dims.y, 4), groups(dims.z, 4)}};
+    passes[3] = {m_finish.get(), finishSet.set, p, finishGroups(dims)};
     runPasses(m_ctx, m_layout.get(), {&a, &b}, out, passes);
     return std::move(out);
 }
@@ -299,7 +301,6 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
     gpu::DescriptorSet finishSet = makeSet(texture, a, b, out); // a -> out
     const VkDescriptorSet sets[3] = {xSet.set, ySet.set, zSet.set};
 
-    const glm::uvec3 voxelGroups(groups(dims.x, 4), groups(dims.y, 4), groups(dims.z, 4));
     const glm::uvec3 lineGroups[3] = {{groups(dims.y, 8), groups(dims.z, 8), 1},
                                       {groups(dims.x, 8), groups(dims.z, 8), 1},
                                       {groups(dims.x, 8), groups(dims.y, 8), 1}};
@@ -315,7 +316,7 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
     }
     shader::FeatureBakeParams p = baseParams(dims, spacing);
     p.mode = 1;
-    passes.push_back({m_finish.get(), finishSet.set, p, voxelGroups});
+    passes.push_back({m_finish.get(), finishSet.set, p, finishGroups(dims)});
     runPasses(m_ctx, m_layout.get(), {&a, &b}, out, passes);
     return std::move(out);
 }
