@@ -47,9 +47,16 @@ inline double procStatusMiB(const std::string& key) {
     return 0.0;
 }
 
-/// Peak resident memory of this process so far, MiB.
+/// Peak resident memory of this process so far (since the last reset), MiB.
 inline double peakRssMiB() {
     return procStatusMiB("VmHWM");
+}
+
+/// Starts peak resident memory afresh from the current resident size (Linux:
+/// writing 5 to /proc/self/clear_refs). Returns false where unsupported.
+inline bool resetPeakRss() {
+    std::ofstream clear("/proc/self/clear_refs");
+    return static_cast<bool>(clear << "5" << std::flush);
 }
 
 } // namespace cutaway::bench

@@ -51,7 +51,7 @@ def bake_rows(records):
         out.append(f"| {r['dataset']} | {ms(b.get('read_ms'))} | {ms(b.get('upload_ms'))} |"
                    f" {ms(b.get('gradients_ms'))} | {ms(b.get('distance_field_ms'))} |"
                    f" {ms(b.get('segment_mask_ms'))} | {ms(b.get('operator_map_ms'))} |"
-                   f" {r['peak_rss_mib']:.0f} | {r['memory_goal_mib']:.0f} |")
+                   f" {ms(r['peak_rss_mib'])} | {r['memory_goal_mib']:.0f} |")
     return out
 
 

@@ -95,7 +95,8 @@ void printBakes(const json& records) {
                     msText(b.value("distance_field_ms", json())).c_str(),
                     msText(b.value("segment_mask_ms", json())).c_str(),
                     msText(b.value("operator_map_ms", json())).c_str(),
-                    r["peak_rss_mib"].get<double>(), r["memory_goal_mib"].get<double>());
+                    r["peak_rss_mib"].is_number() ? r["peak_rss_mib"].get<double>() : 0.0,
+                    r["memory_goal_mib"].get<double>());
     }
 }
 

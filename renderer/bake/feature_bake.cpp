@@ -235,12 +235,14 @@ struct Images {
     gpu::Image a, b, out;
 };
 
-Images makeImages(const gpu::Context& ctx, VkExtent3D e) {
+// `second`: a second scratch image (passes that cannot work in place).
+Images makeImages(const gpu::Context& ctx, VkExtent3D e, bool second) {
     Images images;
     images.a = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
                                 VK_IMAGE_USAGE_STORAGE_BIT);
-    images.b = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                VK_IMAGE_USAGE_STORAGE_BIT);
+    if (second)
+        images.b = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
+                                    VK_IMAGE_USAGE_STORAGE_BIT);
     images.out =
         gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16G16B16A16_SFLOAT, e, kFieldUsage);
     return images;
@@ -259,25 +261,25 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
                          " voxels; the distance transform handles at most " +
                          std::to_string(shader::kEdtMaxLine) + " voxels per side");
 
-    Images images = makeImages(m_ctx, e);
-    gpu::Image &a = images.a, &b = images.b, &out = images.out;
-    gpu::DescriptorSet linesSet = makeSet(values, b, a, out);  // -> a
-    gpu::DescriptorSet ySet = makeSet(values, a, b, out);      // a -> b
-    gpu::DescriptorSet zSet = makeSet(values, b, a, out);      // b -> a
-    gpu::DescriptorSet finishSet = makeSet(values, a, b, out); // a -> out
+    // The envelope passes read a whole line before writing it, so every pass
+    // works in place in one scratch image (a second would add 4 bytes per voxel
+    // to the peak memory).
+    Images images = makeImages(m_ctx, e, false);
+    gpu::Image &a = images.a, &out = images.out;
+    gpu::DescriptorSet set = makeSet(values, a, a, out); // -> a, a -> a, a -> out
 
     shader::FeatureBakeParams p = baseParams(dims, spacing);
     p.threshold = threshold;
     std::vector<Pass> passes(4);
-    passes[0] = {m_lines.get(), linesSet.set, p, {groups(dims.y, 8), groups(dims.z, 8), 1}};
+    passes[0] = {m_lines.get(), set.set, p, {groups(dims.y, 8), groups(dims.z, 8), 1}};
     p.axis = 1;
-    passes[1] = {m_envelope.get(), ySet.set, p, {groups(dims.x, 8), groups(dims.z, 8), 1}};
+    passes[1] = {m_envelope.get(), set.set, p, {groups(dims.x, 8), groups(dims.z, 8), 1}};
     p.axis = 2;
-    passes[2] = {m_envelope.get(), zSet.set, p, {groups(dims.x, 8), groups(dims.y, 8), 1}};
+    passes[2] = {m_envelope.get(), set.set, p, {groups(dims.x, 8), groups(dims.y, 8), 1}};
     p.axis = 0;
     p.mode = 0;
-    passes[3] = {m_finish.get(), finishSet.set, p, finishGroups(dims)};
-    runPasses(m_ctx, m_layout.get(), {&a, &b}, out, passes);
+    passes[3] = {m_finish.get(), set.set, p, finishGroups(dims)};
+    runPasses(m_ctx, m_layout.get(), {&a}, out, passes);
     return std::move(out);
 }
 
@@ -293,7 +295,7 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
     const VkExtent3D e{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
     const gpu::Image texture = uploadMask(m_ctx, indicator, dims);
 
-    Images images = makeImages(m_ctx, e);
+    Images images = makeImages(m_ctx, e, true);
     gpu::Image &a = images.a, &b = images.b, &out = images.out;
     gpu::DescriptorSet xSet = makeSet(texture, b, a, out);      // indicator -> a
     gpu::DescriptorSet ySet = makeSet(texture, a, b, out);      // a -> b

@@ -79,8 +79,9 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     gpu::Image field;
     if (a.mode == AlignmentMode::Surface) {
         // The object: above the threshold, or enclosed by it (segmentation.hpp).
-        const std::vector<std::uint8_t> object = objectMask(*volume.scan, threshold(a, volume));
-        const gpu::Image objectTexture = bake::uploadMask(m_ctx, object, volume.dims);
+        // (The mask on the host is freed before the bake: it is peak memory.)
+        const gpu::Image objectTexture =
+            bake::uploadMask(m_ctx, objectMask(*volume.scan, threshold(a, volume)), volume.dims);
         field = m_baker.distanceField(objectTexture, volume.spacing, 0.5f);
     } else {
         std::vector<std::uint8_t> indicator;
