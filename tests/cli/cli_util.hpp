@@ -16,10 +16,10 @@ struct CommandResult {
     std::string output; ///< stdout and stderr together
 };
 
-/// Runs `cutaway ARGS` (or `PREFIX cutaway ARGS`) through the shell.
-inline CommandResult runCutaway(const std::string& args, const std::string& prefix = "") {
-    const std::string cmd =
-        "CUTAWAY_VALIDATION=1 " + prefix + " " + CUTAWAY_BINARY + " " + args + " 2>&1";
+/// Runs `PROGRAM ARGS` (or `PREFIX PROGRAM ARGS`) through the shell.
+inline CommandResult runProgram(const std::string& program, const std::string& args,
+                                const std::string& prefix = "") {
+    const std::string cmd = "CUTAWAY_VALIDATION=1 " + prefix + " " + program + " " + args + " 2>&1";
     CommandResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
@@ -29,6 +29,11 @@ inline CommandResult runCutaway(const std::string& args, const std::string& pref
     const int status = pclose(pipe);
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     return r;
+}
+
+/// Runs `cutaway ARGS` (or `PREFIX cutaway ARGS`) through the shell.
+inline CommandResult runCutaway(const std::string& args, const std::string& prefix = "") {
+    return runProgram(CUTAWAY_BINARY, args, prefix);
 }
 
 /// A fresh folder per test, removed afterwards.

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Validates every example scene in scenes/ against scenes/scene.schema.json.
+"""Validates every example scene in scenes/ (and the benchmark's, in
+bench/scenes/) against scenes/scene.schema.json.
 
 Also checks the schema itself, and that it rejects what cutaway rejects for
 structural reasons (an unknown key, a wrong type, an out-of-range number), so
@@ -19,13 +20,14 @@ validator = jsonschema.Draft202012Validator(schema)
 failures = 0
 scenes = sorted((root / "scenes").glob("*.json"))
 scenes = [s for s in scenes if s.name != "scene.schema.json"]
+scenes += sorted((root / "bench" / "scenes").glob("*.json"))
 for path in scenes:
     errors = list(validator.iter_errors(json.loads(path.read_text())))
     for e in errors:
-        print(f"FAIL {path.name}: /{'/'.join(map(str, e.absolute_path))}: {e.message}")
+        print(f"FAIL {path.relative_to(root)}: /{'/'.join(map(str, e.absolute_path))}: {e.message}")
     failures += bool(errors)
     if not errors:
-        print(f"ok   {path.name}")
+        print(f"ok   {path.relative_to(root)}")
 
 minimal = {"version": 1, "volume": {"phantom": "head"}}
 must_fail = {

@@ -1,0 +1,105 @@
+// The Table 1 benchmark (bench/) on a tiny table, so it cannot rot unseen:
+// every row it promises is in its records with consistent figures, the VTK
+// comparison's spec matches the frames it timed, and a bad table is refused.
+// Nothing here looks at a time's size: benchmarks report, tests never time.
+#include "cli_util.hpp"
+
+#include <nlohmann/json.hpp>
+
+namespace cutaway::test {
+namespace {
+
+using nlohmann::json;
+
+class BenchCli : public CliTest {
+protected:
+    void SetUp() override {
+        if (std::string(CUTAWAY_BENCH).empty())
+            GTEST_SKIP() << "configured without the benchmark (CUTAWAY_BUILD_BENCH=OFF)";
+        CliTest::SetUp();
+    }
+    // A 24^3 head phantom with its labels and one peeler; the table gives it
+    // all four rows.
+    std::filesystem::path writeTable() {
+        const json scene = {
+            {"version", 1},
+            {"volume", {{"phantom", "head"}, {"size", {24, 24, 24}}}},
+            {"labels", {{"phantom", true}}},
+            {"transfer",
+             json::parse(R"({"points": [{"value": 0, "color": [1, 0.8, 0.7], "alpha": 0},
+                 {"value": 255, "color": [1, 1, 1], "alpha": 0.8}]})")},
+            {"camera", {{"orbit", {{"azimuth", 10}, {"elevation", 30}, {"distance", 90}}}}},
+            {"operators",
+             json::array({{{"type", "peeler"},
+                           {"placement", {{"translate", {0, 0, 8}}, {"scale", {16, 16, 10}}}},
+                           {"params", {{"hinge", -4}, {"thickness", 6}}}}})},
+        };
+        std::ofstream(m_dir / "tiny.json") << scene.dump();
+        const json table = {
+            {"datasets",
+             {{{"dataset", "tiny"},
+               {"scene", "tiny.json"},
+               {"alignments",
+                {{"none", nullptr},
+                 {"axis", {{"mode", "axis"}}},
+                 {"surface", {{"mode", "surface"}, {"threshold", "otsu"}, {"depth", 2}}},
+                 {"segment", {{"mode", "segment"}, {"labels", {"brain"}}}}}}}}}};
+        std::ofstream(m_dir / "table.json") << table.dump();
+        return m_dir / "table.json";
+    }
+};
+
+TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
+    const auto table = writeTable();
+    const auto results = m_dir / "results.json";
+    const auto vtk = m_dir / "vtk";
+    const CommandResult r = runProgram(
+        CUTAWAY_BENCH, "--table " + table.string() + " --json " + results.string() + " --vtk-dir " +
+                           vtk.string() + " --frames 2 --spacings 1.0,0.5 --size 32 --turntable 2");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("vulkan validation"), std::string::npos) << r.output;
+    json records;
+    std::ifstream(results) >> records;
+    int frames = 0, turntables = 0;
+    for (const json& rec : records) {
+        if (rec.value("kind", "") == "turntable") {
+            ++turntables;
+            EXPECT_EQ(rec["frames"], 2);
+            EXPECT_EQ(rec["failed"], 0);
+            continue;
+        }
+        ++frames;
+        EXPECT_EQ(rec["dataset"], "tiny");
+        EXPECT_EQ(rec["dims"], json({24, 24, 24}));
+        EXPECT_EQ(rec["width"], 32);
+        EXPECT_EQ(rec["frames"], 2);
+        EXPECT_EQ(rec["operator"], rec["alignment"] == "none" ? "none" : "peeler");
+        if (rec["method"] == "raycast") {
+            EXPECT_EQ(rec["alignment"], "none");
+        }
+        EXPECT_LE(rec["ms_min"].get<double>(), rec["ms_median"].get<double>());
+        EXPECT_LE(rec["ms_median"].get<double>(), rec["ms_max"].get<double>());
+        EXPECT_NEAR(rec["fps"].get<double>() * rec["ms_median"].get<double>(), 1000.0, 1e-6);
+        for (const char* bake :
+             {"gradients_ms", "distance_field_ms", "segment_mask_ms", "operator_map_ms"})
+            EXPECT_TRUE(rec["bake_ms"][bake].is_number()) << bake;
+        EXPECT_GT(rec["peak_rss_mib"].get<double>(), 0.0);
+    }
+    // none: slicing and raycast; axis, surface, segment: slicing; two spacings each.
+    EXPECT_EQ(frames, 10);
+    EXPECT_EQ(turntables, 1);
+    json spec;
+    std::ifstream(vtk / "vtk_tiny.json") >> spec;
+    EXPECT_EQ(spec["cameras"].size(), 2u) << "one camera per timed no-operator frame at d = 1";
+    EXPECT_EQ(std::filesystem::file_size(vtk / spec["raw"].get<std::string>()), 24u * 24 * 24 * 2);
+}
+
+TEST_F(BenchCli, AMissingTableIsBadInputNamingIt) {
+    const CommandResult r =
+        runProgram(CUTAWAY_BENCH, "--table " + (m_dir / "absent.json").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("absent.json"), std::string::npos) << r.output;
+}
+
+} // namespace
+} // namespace cutaway::test
