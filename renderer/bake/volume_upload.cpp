@@ -23,14 +23,9 @@ gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWind
     std::vector<uint16_t> texels = normalizeVolume(volume, window);
     VkExtent3D extent{static_cast<uint32_t>(volume.dims.x), static_cast<uint32_t>(volume.dims.y),
                       static_cast<uint32_t>(volume.dims.z)};
-    gpu::Image image =
-        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16_UNORM, extent,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    gpu::uploadImage(ctx, image, texels.data(), texels.size() * sizeof(uint16_t),
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    return image;
+    return gpu::createSampledVolume(
+        ctx, VK_FORMAT_R16_UNORM, extent, texels.data(), texels.size() * sizeof(uint16_t),
+        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims) {
@@ -41,13 +36,8 @@ gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask,
                    [](uint8_t m) { return m ? uint8_t(255) : uint8_t(0); });
     VkExtent3D extent{static_cast<uint32_t>(dims.x), static_cast<uint32_t>(dims.y),
                       static_cast<uint32_t>(dims.z)};
-    gpu::Image image =
-        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8_UNORM, extent,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    gpu::uploadImage(ctx, image, texels.data(), texels.size(),
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    return image;
+    return gpu::createSampledVolume(ctx, VK_FORMAT_R8_UNORM, extent, texels.data(), texels.size(),
+                                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 } // namespace cutaway::bake

@@ -54,6 +54,11 @@ void barrierTransferToHost(VkCommandBuffer cmd);
 void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,
                  VkImageLayout finalLayout, VkPipelineStageFlags2 dstStage);
 
+/// A sampled 3D image of `format` holding `bytes` of tightly packed texels (x
+/// fastest), left SHADER_READ_ONLY_OPTIMAL for `readers`. Blocks until done.
+Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent, const void* data,
+                          std::size_t bytes, VkPipelineStageFlags2 readers);
+
 /// Copies a whole image back to the host (tests and tools; blocks). The image
 /// must be in `layout` (and readable by transfers after `srcStage`) and is
 /// left in it.

@@ -71,7 +71,8 @@ gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const Gpu
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     gpu::uploadImage(ctx, image, halves.data(), halves.size() * sizeof(uint64_t),
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT); // slicing and ray casting
     return image;
 }
 
@@ -83,13 +84,9 @@ gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuV
         layers = classLayers(*volume.labels, scene.labelTransfers);
         extent = {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)};
     }
-    gpu::Image image =
-        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8_UINT, extent,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    gpu::uploadImage(ctx, image, layers.data(), layers.size(),
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
-    return image;
+    return gpu::createSampledVolume(ctx, VK_FORMAT_R8_UINT, extent, layers.data(), layers.size(),
+                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 // A render-pass attachment cleared at the start: colour to transparent black,
