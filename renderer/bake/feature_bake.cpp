@@ -90,6 +90,17 @@ void storageBarrier(VkCommandBuffer cmd) {
 
 /// Records the passes in order in one submission: the scratch images and `out`
 /// go to GENERAL first, `out` ends SHADER_READ_ONLY_OPTIMAL. Blocks until done.
+// What the GPU segment mask and its CPU twin both require of their inputs.
+void checkSegmentInputs(const std::vector<uint8_t>& indicator, glm::ivec3 dims, glm::dvec3 spacing,
+                        double bandMm) {
+    checkGrid(dims, spacing, "segment mask");
+    if (indicator.size() != voxelCount(dims))
+        throw InputError("segment mask: " + std::to_string(indicator.size()) +
+                         " indicator bytes for " + dimsText(dims) + " voxels");
+    if (!(bandMm >= 0.0) || !std::isfinite(bandMm))
+        throw InputError("segment mask: the band width must be a finite number >= 0 mm");
+}
+
 // field_finish.comp: 8x8 invocations per group, each a column of 16 voxels.
 glm::uvec3 finishGroups(glm::ivec3 dims) {
     return {groups(dims.x, 8), groups(dims.y, 8), groups(dims.z, 16)};
@@ -285,12 +296,7 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
 
 gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
                                      glm::dvec3 spacing, double bandMm) const {
-    checkGrid(dims, spacing, "segment mask");
-    if (indicator.size() != voxelCount(dims))
-        throw InputError("segment mask: " + std::to_string(indicator.size()) +
-                         " indicator bytes for " + dimsText(dims) + " voxels");
-    if (!(bandMm >= 0.0) || !std::isfinite(bandMm))
-        throw InputError("segment mask: the band width must be a finite number >= 0 mm");
+    checkSegmentInputs(indicator, dims, spacing, bandMm);
 
     const VkExtent3D e{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
     const gpu::Image texture = uploadMask(m_ctx, indicator, dims);
@@ -358,12 +364,7 @@ std::vector<float> distanceFieldCpu(const std::vector<uint8_t>& object, glm::ive
 
 std::vector<float> smoothMaskCpu(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
                                  glm::dvec3 spacing, double bandMm) {
-    checkGrid(dims, spacing, "segment mask");
-    if (indicator.size() != voxelCount(dims))
-        throw InputError("segment mask: " + std::to_string(indicator.size()) +
-                         " indicator bytes for " + dimsText(dims) + " voxels");
-    if (!(bandMm >= 0.0) || !std::isfinite(bandMm))
-        throw InputError("segment mask: the band width must be a finite number >= 0 mm");
+    checkSegmentInputs(indicator, dims, spacing, bandMm);
     std::vector<float> s(indicator.size());
     for (std::size_t i = 0; i < s.size(); ++i)
         s[i] = indicator[i] ? 1.0f : 0.0f;
