@@ -117,15 +117,21 @@ TEST_F(CliTest, FramesOptionSelectsARange) {
 
 TEST_F(CliTest, InterruptedSequenceLeavesOnlyWholeFrames) {
     const fs::path scene = write("long.json", turntable(399, 48, 96));
-    // SIGINT after a second, mid-sequence; --preserve-status returns cutaway's own code.
-    CommandResult r = runCutaway("render " + scene.string(), "timeout --preserve-status -s INT 1");
-    EXPECT_EQ(r.code, 130) << r.output;
-    const auto names = files(m_dir / "frames");
-    ASSERT_LT(names.size(), 400u) << "the run was not interrupted";
-    EXPECT_EQ(names, frameNames(0, static_cast<int>(names.size()) - 1)) << "a gap or a stray file";
-    for (const std::string& name : names) {
-        Image img = readExr(m_dir / "frames" / name); // throws if truncated
-        EXPECT_EQ(img.width, 96) << name;
+    // A signal after a second, mid-sequence (frame n may be being written
+    // while n + 1 renders); --preserve-status returns cutaway's own code.
+    for (const auto& [signal, code] : {std::pair{"INT", 130}, std::pair{"TERM", 143}}) {
+        fs::remove_all(m_dir / "frames");
+        CommandResult r = runCutaway("render " + scene.string(),
+                                     std::string("timeout --preserve-status -s ") + signal + " 1");
+        EXPECT_EQ(r.code, code) << signal << ": " << r.output;
+        const auto names = files(m_dir / "frames");
+        ASSERT_LT(names.size(), 400u) << signal << ": the run was not interrupted";
+        EXPECT_EQ(names, frameNames(0, static_cast<int>(names.size()) - 1))
+            << signal << ": a gap or a stray file";
+        for (const std::string& name : names) {
+            Image img = readExr(m_dir / "frames" / name); // throws if truncated
+            EXPECT_EQ(img.width, 96) << name;
+        }
     }
 }
 
