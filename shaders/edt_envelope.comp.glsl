@@ -16,20 +16,13 @@ int v[kEdtMaxLine];      // abscissae of the parabolas in the envelope
 float fv[kEdtMaxLine];   // their values f(v[k])
 float z[kEdtMaxLine + 1]; // parabola k is lowest on [z[k], z[k + 1]]
 
-ivec3 voxel(int i, ivec2 uv) {
-    if (params.axis == 0) return ivec3(i, uv.x, uv.y);
-    if (params.axis == 1) return ivec3(uv.x, i, uv.y);
-    return ivec3(uv.x, uv.y, i);
-}
+#include "glsl/line_pass.h"
 
 void main() {
-    ivec3 dims = params.dims;
-    int a = params.axis;
-    ivec2 across = a == 0 ? dims.yz : (a == 1 ? dims.xz : dims.xy);
-    ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
-    if (uv.x >= across.x || uv.y >= across.y) return;
-    int n = dims[a];
-    float w2 = params.spacing[a] * params.spacing[a];
+    ivec2 uv;
+    int n;
+    if (!invocationLine(uv, n)) return;
+    float w2 = params.spacing[params.axis] * params.spacing[params.axis];
 
     int k = -1;
     for (int q = 0; q < n; ++q) {

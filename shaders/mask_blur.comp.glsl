@@ -19,11 +19,7 @@ const int kRing = 128; // a power of two > 2 kBlurMaxRadius + 1
 shared float weights[kBlurMaxRadius + 1];
 float ring[kRing];
 
-ivec3 voxel(int i, ivec2 uv) {
-    if (params.axis == 0) return ivec3(i, uv.x, uv.y);
-    if (params.axis == 1) return ivec3(uv.x, i, uv.y);
-    return ivec3(uv.x, uv.y, i);
-}
+#include "glsl/line_pass.h"
 
 float at(int i, ivec2 uv) {
     ivec3 p = voxel(clamp(i, 0, params.dims[params.axis] - 1), uv);
@@ -35,12 +31,9 @@ void main() {
         weights[i] = gaussianWeight(int(i), params.sigma);
     barrier();
 
-    ivec3 dims = params.dims;
-    int a = params.axis;
-    ivec2 across = a == 0 ? dims.yz : (a == 1 ? dims.xz : dims.xy);
-    ivec2 uv = ivec2(gl_GlobalInvocationID.xy);
-    if (uv.x >= across.x || uv.y >= across.y) return;
-    int n = dims[a];
+    ivec2 uv;
+    int n;
+    if (!invocationLine(uv, n)) return;
     int r = params.radius;
     float weightSum = 0.0;
     for (int i = -r; i <= r; ++i) weightSum += weights[abs(i)];
