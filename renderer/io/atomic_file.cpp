@@ -2,8 +2,10 @@
 
 #include "core/error.hpp"
 
+#include <array>
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <cstring>
 #include <fcntl.h>
 #include <string>
@@ -47,7 +49,51 @@ void removeQuietly(const fs::path& path) {
     fs::remove(path, ignored);
 }
 
+// The temporaries being written, for removeTemporariesNow(), which may run in
+// a signal handler: fixed storage, no locks. A slot is claimed (kFree ->
+// kFilling), its path copied, then published (kReady); the handler reads only
+// published slots. More concurrent writes than slots go unregistered (the
+// sequence writer has at most two in flight).
+enum SlotState : int { kFree, kFilling, kReady };
+struct Slot {
+    std::atomic<int> state{kFree};
+    char path[PATH_MAX];
+};
+std::array<Slot, 8> g_slots;
+static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
+
+class Registered {
+public:
+    explicit Registered(const fs::path& tmp) {
+        const std::string& text = tmp.native();
+        if (text.size() >= PATH_MAX) return;
+        for (Slot& slot : g_slots) {
+            int expected = kFree;
+            if (slot.state.compare_exchange_strong(expected, kFilling)) {
+                std::memcpy(slot.path, text.c_str(), text.size() + 1);
+                slot.state.store(kReady);
+                m_slot = &slot;
+                return;
+            }
+        }
+    }
+    ~Registered() {
+        if (m_slot != nullptr) m_slot->state.store(kFree);
+    }
+    Registered(const Registered&) = delete;
+    Registered& operator=(const Registered&) = delete;
+
+private:
+    Slot* m_slot = nullptr;
+};
+
 } // namespace
+
+void removeTemporariesNow() noexcept {
+    for (Slot& slot : g_slots) {
+        if (slot.state.load() == kReady) (void)::unlink(slot.path);
+    }
+}
 
 void writeAtomically(const fs::path& target,
                      const std::function<void(const fs::path& tmp)>& write) {
@@ -64,6 +110,7 @@ void writeAtomically(const fs::path& target,
     }
 
     const fs::path tmp = temporaryPathFor(target);
+    const Registered registered(tmp);
     try {
         write(tmp);
     } catch (...) {

@@ -15,4 +15,10 @@ namespace cutaway {
 void writeAtomically(const std::filesystem::path& target,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
+/// Unlinks the temporaries of every writeAtomically() call in flight.
+/// Async-signal-safe (only atomics and unlink): a signal handler that is about
+/// to end the process calls it so that no temporary outlives the process.
+/// The writes it interrupts then fail, so call it only on the way out.
+void removeTemporariesNow() noexcept;
+
 } // namespace cutaway

@@ -1,7 +1,9 @@
 // NRRD writer: attached header, little endian, raw or gzip. The file appears
 // atomically: it is written under a temporary name in the target folder and
-// renamed over the target, so a crash never leaves a half-written volume.
+// renamed over the target (io/atomic_file.hpp), so a crash never leaves a
+// half-written volume.
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/gzip.hpp"
 #include "volume/io_util.hpp"
@@ -9,7 +11,7 @@
 
 #include <cerrno>
 #include <cstring>
-#include <random>
+#include <fstream>
 #include <sstream>
 
 namespace cutaway {
@@ -62,14 +64,6 @@ std::string header(const Volume& volume, bool gzip) {
     return out.str();
 }
 
-std::filesystem::path temporaryPath(const std::filesystem::path& path) {
-    std::random_device device;
-    std::uniform_int_distribution<std::uint64_t> pick;
-    std::ostringstream name;
-    name << '.' << path.filename().string() << ".tmp-" << std::hex << pick(device);
-    return path.parent_path() / name.str();
-}
-
 } // namespace
 
 void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzip) {
@@ -83,20 +77,11 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzi
     for (int a = 0; a < 3; ++a)
         detail::checkSpacing(volume.spacing[a], a, ctx);
 
-    const std::filesystem::path temporary = temporaryPath(path);
-    const auto fail = [&](const std::string& why) {
-        std::error_code ignored;
-        std::filesystem::remove(temporary, ignored);
-        return RuntimeError(ctx + ": cannot write: " + why);
-    };
-    {
+    writeAtomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         if (!out) {
-            const int error = errno;
-            const auto folder =
-                path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
-            throw fail("cannot create a file in folder '" + folder.string() + "' (" +
-                       std::strerror(error) + ")");
+            throw RuntimeError(ctx + ": cannot write: cannot create " + temporary.string() + " (" +
+                               std::strerror(errno) + ")");
         }
         const std::string text = header(volume, gzip);
         out.write(text.data(), static_cast<std::streamsize>(text.size()));
@@ -107,6 +92,9 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzi
             detail::swapBytes(swapped.data(), volume.voxelCount(), voxelSize(volume.type));
             voxels = swapped.data();
         }
+        const auto failed = [&] {
+            return RuntimeError(ctx + ": cannot write: writing the data failed (disk full?)");
+        };
         try {
             if (gzip) {
                 detail::writeGzip(out, voxels, bytes, ctx);
@@ -115,14 +103,11 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzi
                           static_cast<std::streamsize>(bytes));
             }
         } catch (const RuntimeError&) {
-            throw fail("writing the data failed (disk full?)");
+            throw failed();
         }
         out.close();
-        if (!out) throw fail("writing the data failed (disk full?)");
-    }
-    std::error_code ec;
-    std::filesystem::rename(temporary, path, ec);
-    if (ec) throw fail("cannot rename the temporary file into place (" + ec.message() + ")");
+        if (!out) throw failed();
+    });
 }
 
 } // namespace cutaway

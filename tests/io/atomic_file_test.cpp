@@ -125,6 +125,26 @@ TEST(AtomicFile, FailedRenameThrowsAndRemovesTheTemporary) {
     EXPECT_TRUE(fs::is_directory(target / "child"));
 }
 
+TEST(AtomicFile, TemporariesInFlightCanBeRemovedAtOnce) {
+    // What the CLI's second-signal handler does before it ends the process:
+    // every temporary being written disappears; the target never appears.
+    TempDir dir;
+    const fs::path target = dir / "frame.exr";
+    EXPECT_THROW(writeAtomically(target,
+                                 [&](const fs::path& tmp) {
+                                     writeText(tmp, "half a frame");
+                                     ASSERT_TRUE(fs::exists(tmp));
+                                     removeTemporariesNow();
+                                     EXPECT_FALSE(fs::exists(tmp));
+                                 }),
+                 RuntimeError);
+    EXPECT_TRUE(dir.list().empty());
+    // Finished writes are no longer registered: their targets stay.
+    writeAtomically(target, [&](const fs::path& tmp) { writeText(tmp, "whole"); });
+    removeTemporariesNow();
+    EXPECT_EQ(readText(target), "whole");
+}
+
 TEST(AtomicFile, ReadOnlyFolderThrowsNamingIt) {
     if (::geteuid() == 0) GTEST_SKIP() << "root ignores folder permissions";
     TempDir dir;
