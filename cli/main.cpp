@@ -96,6 +96,10 @@ int runRender(const RenderArgs& args) {
         std::fprintf(stderr, "cutaway: interrupted by signal %d; finished frames are whole\n", sig);
         return 128 + sig;
     }
+    if (summary.writeFailed) {
+        std::fprintf(stderr, "cutaway: stopped: a frame could not be written (see above); "
+                             "finished frames are whole, --skip-existing resumes the run\n");
+    }
     if (summary.failed) return summary.anyBadInput ? kExitInput : kExitRuntime;
     return 0;
 }

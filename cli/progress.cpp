@@ -40,8 +40,11 @@ void Progress::summary(const job::SequenceSummary& s) const {
     std::fprintf(stderr,
                  "cutaway: %d frame(s) rendered, %d skipped, %d failed%s in %.2f s "
                  "(median %.2f s per frame)\n",
-                 s.rendered, s.skipped, s.failed, s.stopped ? ", interrupted" : "", s.totalSeconds,
-                 median);
+                 s.rendered, s.skipped, s.failed,
+                 s.stopped       ? ", interrupted"
+                 : s.writeFailed ? ", stopped: a frame could not be written"
+                                 : "",
+                 s.totalSeconds, median);
 }
 
 } // namespace cutaway::cli

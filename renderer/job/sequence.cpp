@@ -95,7 +95,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
     const std::vector<int> frames = framesToRender(scene, options);
     SequenceSummary summary;
     std::unique_ptr<FrameRenderer> renderer; // made on the first frame that needs it
-    bool halted = false;                     // a failed frame under --fail-fast
+    bool halted = false;                     // a failed frame under --fail-fast, or a failed write
     const auto report = [&](FrameEvent& event) {
         if (event.kind == FrameEvent::Kind::Failed) {
             ++summary.failed;
@@ -122,6 +122,10 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             p.event.error = e.what();
             p.event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
             p.event.seconds = secondsSince(p.start);
+            // A full disk, a vanished or read-only folder: later frames would
+            // fail the same way after rendering for nothing.
+            summary.writeFailed = true;
+            halted = true;
         }
         report(p.event);
     };
@@ -157,7 +161,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                 summary.stopped = true;
                 break;
             }
-            if (halted) break; // the previous frame failed under --fail-fast
+            if (halted) break; // the previous frame failed to write, or under --fail-fast
             ExrOptions exr;
             exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
             exr.attributes = {{"cutaway/frame", std::to_string(event.frame)},

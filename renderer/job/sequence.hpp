@@ -64,8 +64,9 @@ struct SequenceSummary {
     int skipped = 0;
     int failed = 0;
     bool anyBadInput = false;
-    bool stopped = false;  ///< stopRequested() ended the run early
-    int volumeUploads = 0; ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
+    bool stopped = false;     ///< stopRequested() ended the run early
+    bool writeFailed = false; ///< a frame's files could not be written: the run stopped there
+    int volumeUploads = 0;    ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
     std::vector<double> frameSeconds; ///< of rendered frames
     double totalSeconds = 0.0;
 };
@@ -75,7 +76,9 @@ std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& optio
 
 /// Renders and writes the frames. Per-frame errors are reported through
 /// onFrame and counted; a frame interrupted by stopRequested is discarded
-/// (never written). Errors that concern the whole run (no device) propagate.
+/// (never written). A frame whose files cannot be written (disk full) fails
+/// and ends the run: its temporaries are removed, earlier frames stay whole.
+/// Errors that concern the whole run (no device) propagate.
 SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                                const SequenceOptions& options);
 

@@ -161,6 +161,39 @@ TEST_F(CliTest, ASecondSignalEndsTheRunAtOnceLeavingNoTemporaries) {
     }
 }
 
+TEST_F(CliTest, AFullDiskStopsTheRunKeepingFinishedFramesWhole) {
+    // A 40 KiB tmpfs (mounted in a user and mount namespace of its own, so no
+    // root is needed) holds a few 96^2 frames of the sequence's 20.
+    if (runProgram("unshare", "-rm true").code != 0)
+        GTEST_SKIP() << "needs unshare -rm (user and mount namespaces) to mount a small tmpfs";
+    const fs::path scene = write("turn.json", turntable(19, 24, 96));
+    const fs::path disk = m_dir / "disk", kept = m_dir / "kept";
+    fs::create_directories(disk);
+    fs::create_directories(kept);
+    // The tmpfs vanishes with the namespace: its files are copied out first.
+    const std::string script = "mount -t tmpfs -o size=40k tmpfs " + disk.string() + " && " +
+                               CUTAWAY_BINARY + " render " + scene.string() + " -o " +
+                               (disk / "t_####.exr").string() + "; rc=$?; cp -a " + disk.string() +
+                               "/. " + kept.string() + "; exit $rc";
+    CommandResult r = runProgram("unshare", "-rm sh -c '" + script + "'");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("stopped: a frame could not be written"), std::string::npos)
+        << r.output;
+    const auto names = files(kept);
+    ASSERT_GE(names.size(), 1u) << r.output;
+    ASSERT_LT(names.size(), 20u) << "the disk did not fill up";
+    EXPECT_EQ(names, frameNames(0, static_cast<int>(names.size()) - 1)) << "a gap or a stray file";
+    for (const std::string& name : names)
+        EXPECT_EQ(readExr(kept / name).width, 96) << name;
+    // The run stopped at the frame that did not fit: one failure reported.
+    const std::string failed = "frame " + std::to_string(names.size()) + " failed";
+    EXPECT_NE(r.output.find(failed), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("frame " + std::to_string(names.size() + 1) + " failed"),
+              std::string::npos)
+        << r.output;
+}
+
 TEST_F(CliTest, AFailedFrameDoesNotStopTheOthersUnlessFailFast) {
     // fov leaves its range (0, 170) after frame 3.
     const fs::path scene = write("fov.json", R"({ "version": 1,
