@@ -55,6 +55,7 @@ struct RenderArgs {
     std::string size;
     std::vector<std::string> sets;
     std::string device;
+    std::string memoryBudget;
     bool png = false;
     bool skipExisting = false;
     bool failFast = false;
@@ -88,6 +89,13 @@ int runRender(const RenderArgs& args) {
 
     cutaway::gpu::ContextOptions contextOptions;
     contextOptions.deviceName = args.device;
+    if (!args.memoryBudget.empty()) {
+        try {
+            contextOptions.memoryBudget = cutaway::gpu::parseMemorySize(args.memoryBudget);
+        } catch (const cutaway::InputError& e) {
+            throw cutaway::InputError(std::string("--memory-budget: ") + e.what());
+        }
+    }
     cutaway::gpu::Context ctx(contextOptions);
     const job::SequenceSummary summary = job::renderSequence(ctx, scene, options);
     progress.summary(summary);
@@ -95,6 +103,10 @@ int runRender(const RenderArgs& args) {
     if (const int sig = cutaway::cli::interruptSignal()) {
         std::fprintf(stderr, "cutaway: interrupted by signal %d; finished frames are whole\n", sig);
         return 128 + sig;
+    }
+    if (summary.resourceExceeded) {
+        std::fprintf(stderr, "cutaway: stopped: the device cannot render this scene (see above); "
+                             "finished frames are whole\n");
     }
     if (summary.writeFailed) {
         std::fprintf(stderr, "cutaway: stopped: a frame could not be written (see above); "
@@ -165,6 +177,9 @@ int main(int argc, char** argv) {
                      "Stop at the first failed frame (default: render the others, exit non-zero)");
     render->add_option("--device", renderArgs.device,
                        "Vulkan device: a substring of its name (see `cutaway devices`)");
+    render->add_option("--memory-budget", renderArgs.memoryBudget,
+                       "Device memory cutaway may hold at once, e.g. 2G or 512M; past it a "
+                       "frame fails naming the limit (default: the device-local heap)");
     render->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing but errors");
 
     std::string validateScene;

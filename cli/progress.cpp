@@ -41,9 +41,10 @@ void Progress::summary(const job::SequenceSummary& s) const {
                  "cutaway: %d frame(s) rendered, %d skipped, %d failed%s in %.2f s "
                  "(median %.2f s per frame)\n",
                  s.rendered, s.skipped, s.failed,
-                 s.stopped       ? ", interrupted"
-                 : s.writeFailed ? ", stopped: a frame could not be written"
-                                 : "",
+                 s.stopped            ? ", interrupted"
+                 : s.writeFailed      ? ", stopped: a frame could not be written"
+                 : s.resourceExceeded ? ", stopped: past a device limit"
+                                      : "",
                  s.totalSeconds, median);
 }
 

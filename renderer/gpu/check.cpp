@@ -35,14 +35,38 @@ const char* resultName(VkResult result) {
     }
 }
 
+const char* formatName(VkFormat format) {
+    switch (format) {
+#define CW_CASE(f)                                                                                 \
+    case VK_FORMAT_##f:                                                                            \
+        return #f;
+        CW_CASE(R8_UNORM)
+        CW_CASE(R8_UINT)
+        CW_CASE(R16_UNORM)
+        CW_CASE(R32_SFLOAT)
+        CW_CASE(R8G8B8A8_UNORM)
+        CW_CASE(R8G8B8A8_SNORM)
+        CW_CASE(R16G16B16A16_SFLOAT)
+        CW_CASE(R32G32B32_SFLOAT)
+        CW_CASE(R32G32B32A32_SFLOAT)
+        CW_CASE(D24_UNORM_S8_UINT)
+        CW_CASE(D32_SFLOAT_S8_UINT)
+#undef CW_CASE
+    default:
+        return "(another format)";
+    }
+}
+
 void throwVkError(VkResult result, const char* call, const char* file, int line) {
     std::string message = std::string(call) + " failed at " +
                           std::filesystem::path(file).filename().string() + ":" +
                           std::to_string(line) + ": " + resultName(result);
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
-        message += " (out of memory: try a smaller volume, image size or operator resolution)";
-    else if (result == VK_ERROR_DEVICE_LOST)
-        message += " (the GPU driver reset the device; the frame is lost)";
+        throw ResourceError(message + " (out of memory: try a smaller volume, image size or "
+                                      "operator resolution)");
+    if (result == VK_ERROR_DEVICE_LOST)
+        throw ResourceError(message + " (the device was lost: the driver reset it or it hung; "
+                                      "the frame is lost, finished frames are whole)");
     throw RuntimeError(message);
 }
 

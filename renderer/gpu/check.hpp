@@ -8,6 +8,8 @@ namespace cutaway::gpu {
 
 /// "VK_ERROR_OUT_OF_DEVICE_MEMORY" etc.
 const char* resultName(VkResult result);
+/// "R16_UNORM" for the formats cutaway uses, for messages.
+const char* formatName(VkFormat format);
 
 /// Throws RuntimeError("CALL failed at FILE:LINE: RESULT (+ a hint for the common ones)").
 [[noreturn]] void throwVkError(VkResult result, const char* call, const char* file, int line);

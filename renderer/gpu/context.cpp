@@ -102,6 +102,7 @@ Context::Context(const ContextOptions& options)
         m_formats = choice.formats;
         vkGetPhysicalDeviceProperties(m_physicalDevice, &m_properties);
         vkGetPhysicalDeviceMemoryProperties(m_physicalDevice, &m_memory);
+        m_memoryLimits = queryMemoryLimits(m_physicalDevice, options.memoryBudget);
 
         float priority = 1.0f;
         VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -155,6 +156,28 @@ uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) con
         if ((typeBits & (1u << i)) && (m_memory.memoryTypes[i].propertyFlags & flags) == flags)
             return i;
     throw RuntimeError("no Vulkan memory type with the needed properties on " + deviceName());
+}
+
+DeviceMemory Context::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
+                               const std::string& what) const {
+    const auto refuse = [&](const std::string& why) {
+        return ResourceError("cannot allocate " + formatBytes(req.size) + " of device memory for " +
+                             what + " on " + deviceName() + ": " + why);
+    };
+    const std::string problem = allocationProblem(req.size, memoryInUse(), m_memoryLimits);
+    if (!problem.empty()) throw refuse(problem);
+    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    info.allocationSize = req.size;
+    info.memoryTypeIndex = memoryType(req.memoryTypeBits, flags);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    const VkResult result = vkAllocateMemory(m_device, &info, nullptr, &memory);
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+        throw refuse(std::string("the device is out of memory (") + resultName(result) + ") with " +
+                     formatBytes(memoryInUse()) + " held; --memory-budget below that would " +
+                     "name the limit up front");
+    VK_CHECK(result);
+    m_memoryInUse.fetch_add(req.size);
+    return DeviceMemory(m_device, memory, req.size, &m_memoryInUse);
 }
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
@@ -214,8 +237,15 @@ std::vector<std::string> listDevices() {
     std::vector<VkPhysicalDevice> devices(count);
     vkEnumeratePhysicalDevices(instance, &count, devices.data());
     std::vector<std::string> names;
-    for (VkPhysicalDevice d : devices)
-        names.push_back(describeDevice(d));
+    for (VkPhysicalDevice d : devices) {
+        VkPhysicalDeviceProperties properties;
+        vkGetPhysicalDeviceProperties(d, &properties);
+        const MemoryLimits memory = queryMemoryLimits(d, 0);
+        names.push_back(describeDevice(d) + "\n  maxImageDimension3D " +
+                        std::to_string(properties.limits.maxImageDimension3D) +
+                        ", maxMemoryAllocationSize " + formatBytes(memory.maxAllocation) +
+                        ", device-local heap " + formatBytes(memory.heap));
+    }
     vkDestroyInstance(instance, nullptr);
     return names;
 }

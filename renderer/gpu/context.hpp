@@ -12,7 +12,9 @@
 // or CUTAWAY_VALIDATION=1 in the environment), every warning or error message
 // is printed to stderr and counted; tests fail when the count is not zero.
 #include "gpu/handle.hpp"
+#include "gpu/memory.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,8 +26,9 @@
 namespace cutaway::gpu {
 
 struct ContextOptions {
-    bool validation = false; ///< also switched on by CUTAWAY_VALIDATION=1
-    std::string deviceName;  ///< substring of the device name; empty = best device
+    bool validation = false;       ///< also switched on by CUTAWAY_VALIDATION=1
+    std::string deviceName;        ///< substring of the device name; empty = best device
+    VkDeviceSize memoryBudget = 0; ///< bytes cutaway may hold at once; 0 = the device-local heap
 };
 
 /// What the device supports among the formats cutaway uses.
@@ -54,6 +57,15 @@ public:
     /// Index of a memory type allowed by `typeBits` that has `flags`; throws if none.
     uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
 
+    const MemoryLimits& memoryLimits() const { return m_memoryLimits; }
+    /// Bytes of device memory held now by what allocate() returned.
+    VkDeviceSize memoryInUse() const { return m_memoryInUse.load(); }
+    /// Memory for `req` with `flags`. Throws RuntimeError naming `what` (e.g.
+    /// "a 3D image of 256x256x256 R16_UNORM") and the limit when it exceeds
+    /// one (gpu/memory.hpp) or the device is out of memory.
+    DeviceMemory allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
+                          const std::string& what) const;
+
     /// Records commands into a fresh primary command buffer, submits it and
     /// waits for it to finish.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
@@ -74,6 +86,8 @@ private:
     VkPhysicalDevice m_physicalDevice = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties m_properties{};
     VkPhysicalDeviceMemoryProperties m_memory{};
+    MemoryLimits m_memoryLimits;
+    mutable std::atomic<VkDeviceSize> m_memoryInUse{0};
     DeviceFormats m_formats;
     uint32_t m_queueFamily = 0;
     VkDevice m_device = VK_NULL_HANDLE;
@@ -83,7 +97,8 @@ private:
     std::vector<std::string> m_messages;
 };
 
-/// Names and types of the Vulkan devices present, for `--device` help and errors.
+/// Names and types of the Vulkan devices present, each with its limits on
+/// volume size (maxImageDimension3D, maxMemoryAllocationSize, heap).
 std::vector<std::string> listDevices();
 
 } // namespace cutaway::gpu

@@ -2,23 +2,11 @@
 
 #include "core/error.hpp"
 #include "gpu/check.hpp"
+#include "gpu/memory.hpp"
 
 #include <cstring>
 
 namespace cutaway::gpu {
-namespace {
-
-MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req,
-                      VkMemoryPropertyFlags flags) {
-    VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    info.allocationSize = req.size;
-    info.memoryTypeIndex = ctx.memoryType(req.memoryTypeBits, flags);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    VK_CHECK(vkAllocateMemory(ctx.device(), &info, nullptr, &memory));
-    return MemoryHandle(ctx.device(), memory);
-}
-
-} // namespace
 
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
                     bool hostVisible) {
@@ -34,10 +22,11 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx.device(), buffer, &req);
-    b.memory = allocate(ctx, req,
-                        hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                          VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                    : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    b.memory = ctx.allocate(req,
+                            hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                              VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                        : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT,
+                            "a buffer of " + formatBytes(size));
     VK_CHECK(vkBindBufferMemory(ctx.device(), buffer, b.memory.get(), 0));
     if (hostVisible) VK_CHECK(vkMapMemory(ctx.device(), b.memory.get(), 0, size, 0, &b.mapped));
     return b;
@@ -45,17 +34,37 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 
 namespace {
 
+std::string describe(VkImageType type, VkFormat format, VkExtent3D extent, uint32_t layers) {
+    // Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
+    std::string text = type == VK_IMAGE_TYPE_3D ? "a 3D image of " : "a 2D image of ";
+    text += std::to_string(extent.width);
+    text += 'x';
+    text += std::to_string(extent.height);
+    if (type == VK_IMAGE_TYPE_3D) {
+        text += 'x';
+        text += std::to_string(extent.depth);
+    }
+    if (layers > 1) {
+        text += " with ";
+        text += std::to_string(layers);
+        text += " layers";
+    }
+    text += ' ';
+    text += formatName(format);
+    return text;
+}
+
 Image makeImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
                 VkImageUsageFlags usage, VkImageAspectFlags aspect, uint32_t layers,
                 VkImageViewType viewType) {
     const auto& limits = ctx.properties().limits;
-    const uint32_t maxDim =
-        type == VK_IMAGE_TYPE_3D ? limits.maxImageDimension3D : limits.maxImageDimension2D;
+    const bool is3D = type == VK_IMAGE_TYPE_3D;
+    const uint32_t maxDim = is3D ? limits.maxImageDimension3D : limits.maxImageDimension2D;
     if (extent.width > maxDim || extent.height > maxDim || extent.depth > maxDim)
-        throw RuntimeError("image of " + std::to_string(extent.width) + "x" +
-                           std::to_string(extent.height) + "x" + std::to_string(extent.depth) +
-                           " exceeds the device limit of " + std::to_string(maxDim) +
-                           " texels per side (" + ctx.deviceName() + ")");
+        throw ResourceError("cannot create " + describe(type, format, extent, layers) + " on " +
+                            ctx.deviceName() + ": a side exceeds the device's " +
+                            (is3D ? "maxImageDimension3D" : "maxImageDimension2D") + " of " +
+                            std::to_string(maxDim) + " texels");
     Image img;
     img.format = format;
     img.extent = extent;
@@ -78,7 +87,8 @@ Image makeImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3
 
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device(), image, &req);
-    img.memory = allocate(ctx, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    img.memory = ctx.allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT,
+                              describe(type, format, extent, layers));
     VK_CHECK(vkBindImageMemory(ctx.device(), image, img.memory.get(), 0));
 
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};

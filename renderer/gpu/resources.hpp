@@ -13,7 +13,7 @@ namespace cutaway::gpu {
 
 struct Buffer {
     BufferHandle buffer;
-    MemoryHandle memory;
+    DeviceMemory memory;
     VkDeviceSize size = 0;
     void* mapped = nullptr; ///< persistent mapping for host-visible buffers, else null
 };
@@ -24,7 +24,7 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 
 struct Image {
     ImageHandle image;
-    MemoryHandle memory;
+    DeviceMemory memory;
     ImageViewHandle view;
     VkFormat format = VK_FORMAT_UNDEFINED;
     VkExtent3D extent{0, 0, 0};

@@ -194,9 +194,18 @@ Image FrameRenderer::render(const Scene& scene) {
     if (!m_volume || key != m_volumeKey) {
         m_volume.reset(); // free the old textures before making new ones
         FrameVolume fv = frameVolume(scene);
-        m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
-            m_ctx, m_baker, std::make_shared<const Volume>(std::move(fv.placed.volume)), fv.window,
-            fv.placed.worldLo, std::move(fv.labels)));
+        const glm::ivec3 dims = fv.placed.volume.dims;
+        try {
+            m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
+                m_ctx, m_baker, std::make_shared<const Volume>(std::move(fv.placed.volume)),
+                fv.window, fv.placed.worldLo, std::move(fv.labels)));
+        } catch (const ResourceError& e) {
+            const VolumeSource& v = scene.volume;
+            throw ResourceError("the volume " +
+                                (v.phantom.empty() ? v.file.string() : "phantom " + v.phantom) +
+                                " (" + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                                std::to_string(dims.z) + ") does not fit: " + e.what());
+        }
         m_volumeKey = key;
         ++m_uploads;
     }

@@ -95,7 +95,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
     const std::vector<int> frames = framesToRender(scene, options);
     SequenceSummary summary;
     std::unique_ptr<FrameRenderer> renderer; // made on the first frame that needs it
-    bool halted = false;                     // a failed frame under --fail-fast, or a failed write
+    bool halted = false; // a failed frame under --fail-fast, a failed write, a limit
     const auto report = [&](FrameEvent& event) {
         if (event.kind == FrameEvent::Kind::Failed) {
             ++summary.failed;
@@ -177,6 +177,12 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             event.error = e.what();
             event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
             event.seconds = secondsSince(frameStart);
+            // Past a device limit or the memory budget, or with the device
+            // lost, the next frames would fail the same way.
+            if (dynamic_cast<const ResourceError*>(&e) != nullptr) {
+                summary.resourceExceeded = true;
+                halted = true;
+            }
             report(event);
         }
     }

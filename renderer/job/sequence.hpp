@@ -64,9 +64,10 @@ struct SequenceSummary {
     int skipped = 0;
     int failed = 0;
     bool anyBadInput = false;
-    bool stopped = false;     ///< stopRequested() ended the run early
-    bool writeFailed = false; ///< a frame's files could not be written: the run stopped there
-    int volumeUploads = 0;    ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
+    bool stopped = false;          ///< stopRequested() ended the run early
+    bool writeFailed = false;      ///< a frame's files could not be written: the run stopped there
+    bool resourceExceeded = false; ///< a device limit or the memory budget stopped the run
+    int volumeUploads = 0; ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
     std::vector<double> frameSeconds; ///< of rendered frames
     double totalSeconds = 0.0;
 };
@@ -78,6 +79,8 @@ std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& optio
 /// onFrame and counted; a frame interrupted by stopRequested is discarded
 /// (never written). A frame whose files cannot be written (disk full) fails
 /// and ends the run: its temporaries are removed, earlier frames stay whole.
+/// A frame past a device limit or the memory budget (ResourceError) also
+/// ends the run.
 /// Errors that concern the whole run (no device) propagate.
 SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                                const SequenceOptions& options);

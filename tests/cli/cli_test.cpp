@@ -108,6 +108,48 @@ TEST_F(CliTest, UnwritableOutputIsARuntimeErrorWithNoPartialFile) {
     EXPECT_EQ(files(m_dir), (std::vector<std::string>{"blocker", "scene.json"}));
 }
 
+TEST_F(CliTest, AMemoryBudgetTooSmallStopsTheRunNamingTheVolumeAndTheLimit) {
+    const fs::path scene = write("scene.json", kSmallScene);
+    CommandResult r = run("render " + scene.string() + " --memory-budget 64K --frames 0..3");
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("the volume phantom orange (32x32x32) does not fit"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("memory budget of 64.0 KiB (--memory-budget)"), std::string::npos)
+        << r.output;
+    // The first frame's failure stops the run: the others would fail alike.
+    EXPECT_NE(r.output.find("frame 0 failed"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("frame 1 failed"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames"));
+    // Enough budget: the same scene renders.
+    EXPECT_EQ(run("render " + scene.string() + " --memory-budget 64M").code, 0);
+
+    CommandResult bad = run("render " + scene.string() + " --memory-budget 12Q");
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("--memory-budget: expected a size such as 512M"), std::string::npos)
+        << bad.output;
+}
+
+TEST_F(CliTest, AVolumePastTheDevicesMaxImageDimension3DIsRefusedNamingIt) {
+    CommandResult devices = run("devices");
+    ASSERT_EQ(devices.code, 0) << devices.output;
+    const std::size_t at = devices.output.find("maxImageDimension3D ");
+    ASSERT_NE(at, std::string::npos) << devices.output;
+    const int limit = std::stoi(devices.output.substr(at + 20));
+    const std::string wide = std::to_string(limit + 1);
+    write("wide.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: " + wide +
+                           " 2 2\nencoding: raw\n\n" + std::string((limit + 1) * 4, '\x40'));
+    const fs::path scene = write("scene.json", R"({ "version": 1,
+      "volume": { "file": "wide.nrrd" }, "render": { "size": [16, 16] },
+      "output": { "pattern": "frames/w_####.exr" } })");
+    CommandResult r = run("render " + scene.string());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("wide.nrrd (" + wide + "x2x2) does not fit"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("maxImageDimension3D of " + std::to_string(limit)), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames"));
+}
+
 TEST_F(CliTest, ValidateChecksWithoutRendering) {
     const fs::path good = write("good.json", kSmallScene);
     CommandResult ok = run("validate " + good.string());

@@ -1,0 +1,127 @@
+// Device limits and the memory budget: what does not fit is refused up front
+// with an error naming the limit, and the count of memory held is exact.
+#include "core/error.hpp"
+#include "gpu/memory.hpp"
+#include "gpu/resources.hpp"
+#include "gpu_fixture.hpp"
+
+#include <gtest/gtest.h>
+
+namespace cutaway::test {
+namespace {
+
+constexpr VkDeviceSize kMiB = 1024 * 1024;
+
+std::string inputError(const std::string& text) {
+    try {
+        gpu::parseMemorySize(text);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return {};
+}
+
+gpu::Image volumeImage(const gpu::Context& ctx, uint32_t side) {
+    return gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16_UNORM, {side, side, side},
+                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+}
+
+} // namespace
+
+TEST(MemorySize, ParsesBinaryUnitsWithOrWithoutIB) {
+    EXPECT_EQ(gpu::parseMemorySize("512M"), 512 * kMiB);
+    EXPECT_EQ(gpu::parseMemorySize("2G"), 2048 * kMiB);
+    EXPECT_EQ(gpu::parseMemorySize("1.5GiB"), 1536 * kMiB);
+    EXPECT_EQ(gpu::parseMemorySize("64 MiB"), 64 * kMiB);
+    EXPECT_EQ(gpu::parseMemorySize("4k"), 4096u);
+    EXPECT_EQ(gpu::parseMemorySize("1000000"), 1000000u);
+    EXPECT_EQ(gpu::parseMemorySize("300B"), 300u);
+    for (const char* bad : {"", "abc", "-1G", "0", "12Q", "nan", "inf", "2 GB extra", "1e30T"}) {
+        const std::string message = inputError(bad);
+        EXPECT_NE(message.find("expected a size such as 512M"), std::string::npos)
+            << '"' << bad << "\": " << message;
+    }
+}
+
+TEST(MemorySize, FormatsWithBinaryUnits) {
+    EXPECT_EQ(gpu::formatBytes(12), "12 B");
+    EXPECT_EQ(gpu::formatBytes(1536), "1.50 KiB");
+    EXPECT_EQ(gpu::formatBytes(512 * kMiB), "512.0 MiB");
+    EXPECT_EQ(gpu::formatBytes(3 * 1024 * kMiB), "3.00 GiB");
+}
+
+TEST(MemoryLimitsCheck, EachLimitIsNamed) {
+    gpu::MemoryLimits limits;
+    limits.maxAllocation = 1024 * kMiB;
+    limits.heap = 2048 * kMiB;
+    limits.budget = limits.heap;
+    EXPECT_EQ(gpu::allocationProblem(1024 * kMiB, 1000 * kMiB, limits), "");
+    EXPECT_NE(
+        gpu::allocationProblem(1025 * kMiB, 0, limits).find("maxMemoryAllocationSize of 1.00 GiB"),
+        std::string::npos);
+    EXPECT_NE(gpu::allocationProblem(1024 * kMiB, 1025 * kMiB, limits)
+                  .find("memory budget of 2.00 GiB (the device-local heap"),
+              std::string::npos);
+    limits.maxAllocation = 4096 * kMiB; // some devices allow one allocation past a heap
+    EXPECT_NE(gpu::allocationProblem(3000 * kMiB, 0, limits).find("largest device-local heap"),
+              std::string::npos);
+    limits.budget = 100 * kMiB;
+    limits.budgetGiven = true;
+    EXPECT_NE(gpu::allocationProblem(60 * kMiB, 50 * kMiB, limits)
+                  .find("with the 50.0 MiB already held it exceeds the memory budget of 100.0 MiB "
+                        "(--memory-budget)"),
+              std::string::npos);
+    EXPECT_EQ(gpu::allocationProblem(50 * kMiB, 50 * kMiB, limits), "");
+}
+
+TEST_F(GpuTest, MemoryInUseCountsEveryAllocationAndReturnsToZero) {
+    EXPECT_EQ(ctx().memoryInUse(), 0u);
+    {
+        gpu::Image a = volumeImage(ctx(), 32);
+        const VkDeviceSize one = ctx().memoryInUse();
+        EXPECT_GE(one, 32u * 32u * 32u * 2u);
+        gpu::Buffer b = gpu::createBuffer(ctx(), kMiB, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+        EXPECT_GE(ctx().memoryInUse(), one + kMiB);
+        gpu::Image moved = std::move(a); // moving does not count twice
+        EXPECT_GE(ctx().memoryInUse(), one + kMiB);
+        EXPECT_LT(ctx().memoryInUse(), 2 * one + kMiB);
+    }
+    EXPECT_EQ(ctx().memoryInUse(), 0u);
+}
+
+TEST(GpuMemoryBudget, AnImagePastTheBudgetIsRefusedNamingItAndWhatItWas) {
+    gpu::ContextOptions options;
+    options.validation = true;
+    options.memoryBudget = 3 * kMiB;
+    gpu::Context ctx(options);
+    EXPECT_TRUE(ctx.memoryLimits().budgetGiven);
+    gpu::Image small = volumeImage(ctx, 64); // 0.5 MiB
+    try {
+        volumeImage(ctx, 128); // 4 MiB
+        FAIL() << "expected a ResourceError";
+    } catch (const ResourceError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("a 3D image of 128x128x128 R16_UNORM"), std::string::npos) << what;
+        EXPECT_NE(what.find("memory budget of 3.00 MiB (--memory-budget)"), std::string::npos)
+            << what;
+    }
+    EXPECT_LT(ctx.memoryInUse(), kMiB) << "the refused image's memory is counted";
+    EXPECT_EQ(ctx.validationMessageCount(), 0u);
+}
+
+TEST_F(GpuTest, AVolumePastMaxImageDimension3DIsRefusedNamingTheLimit) {
+    const uint32_t limit = ctx().properties().limits.maxImageDimension3D;
+    try {
+        gpu::createImage(ctx(), VK_IMAGE_TYPE_3D, VK_FORMAT_R16_UNORM, {limit + 1, 2, 2},
+                         VK_IMAGE_USAGE_SAMPLED_BIT);
+        FAIL() << "expected a ResourceError";
+    } catch (const ResourceError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("maxImageDimension3D of " + std::to_string(limit)), std::string::npos)
+            << what;
+        EXPECT_NE(what.find(std::to_string(limit + 1) + "x2x2"), std::string::npos) << what;
+    }
+    EXPECT_EQ(ctx().memoryInUse(), 0u);
+}
+
+} // namespace cutaway::test
