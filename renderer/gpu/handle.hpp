@@ -39,7 +39,6 @@ private:
 };
 
 using BufferHandle = Handle<VkBuffer, vkDestroyBuffer>;
-using MemoryHandle = Handle<VkDeviceMemory, vkFreeMemory>;
 using ImageHandle = Handle<VkImage, vkDestroyImage>;
 using ImageViewHandle = Handle<VkImageView, vkDestroyImageView>;
 using SamplerHandle = Handle<VkSampler, vkDestroySampler>;
