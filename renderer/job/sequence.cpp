@@ -175,6 +175,9 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             finishPending();
             event.kind = FrameEvent::Kind::Failed;
             event.error = e.what();
+            // A JSON pointer is a place in the scene file: name the file too.
+            if (event.error.starts_with('/') && !scene.file.empty())
+                event.error = scene.file.string() + ": " + event.error;
             event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
             event.seconds = secondsSince(frameStart);
             // Past a device limit or the memory budget, or with the device

@@ -301,6 +301,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const CameraMatrices cam =
         computeCamera(scene.camera, bounds, width, height, meshBounds ? &*meshBounds : nullptr);
     const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
+    checkPlaneCount(bounds, sliceMm, scene.render.sliceSpacing, volume.smallestSpacing());
     const double minDepth = cam.perspective ? cam.nearPlane : -1e30;
     const bool raycast = scene.render.method == RenderMethod::Raycast;
     const SliceSet slices =

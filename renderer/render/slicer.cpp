@@ -1,8 +1,11 @@
 #include "render/slicer.hpp"
 
+#include "core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace cutaway::render {
 
@@ -75,9 +78,12 @@ SliceSet buildSlices(const std::vector<Proxy>& proxies, glm::dvec3 eye, glm::dve
         sMax = std::max(sMax, glm::dot(f, p.centre) + p.radius);
     }
     sMin = std::max(sMin, glm::dot(f, eye) + minDepth);
-    for (double k = std::ceil(sMin / spacing - 0.5);; k += 1.0) {
-        const double s = (k + 0.5) * spacing;
-        if (s > sMax) break;
+    if (!(sMin <= sMax)) return set;
+    // Counted in integers: k += 1.0 would stop moving past 2^53.
+    const auto kFirst = static_cast<long long>(std::ceil(sMin / spacing - 0.5));
+    const auto kLast = static_cast<long long>(std::floor(sMax / spacing - 0.5));
+    for (long long k = kFirst; k <= kLast; ++k) {
+        const double s = (static_cast<double>(k) + 0.5) * spacing;
         std::vector<SliceDraw> draws;
         for (std::size_t i = 0; i < proxies.size(); ++i) {
             const Polygon poly = slicePolygon(proxies[i], f, s);
@@ -96,6 +102,20 @@ SliceSet buildSlices(const std::vector<Proxy>& proxies, glm::dvec3 eye, glm::dve
         ++set.sliceCount;
     }
     return set;
+}
+
+void checkPlaneCount(const Box& bounds, double spacing, double sliceSpacing, double voxelMm) {
+    // From the origin to the farthest corner, both ways: this also keeps the
+    // lattice index k small enough for the ray caster's float loop counter.
+    const double reach = std::max(glm::length(bounds.lo), glm::length(bounds.hi));
+    const double planes = 2.0 * reach / spacing;
+    if (std::isfinite(planes) && planes <= kMaxPlanes) return;
+    std::ostringstream message;
+    message << "/render/slice_spacing: " << sliceSpacing << " x the smallest voxel spacing ("
+            << voxelMm << " mm) puts " << planes << " planes across the " << 2.0 * reach
+            << " mm that the frame spans; at most " << kMaxPlanes
+            << " are drawn: raise /render/slice_spacing, or check the volume's spacing";
+    throw InputError(message.str());
 }
 
 } // namespace cutaway::render

@@ -58,4 +58,15 @@ struct SliceSet {
 SliceSet buildSlices(const std::vector<Proxy>& proxies, glm::dvec3 eye, glm::dvec3 forward,
                      double spacing, double minDepth);
 
+/// Most planes a frame may need across what it draws; with a voxel spacing of
+/// 1e-30 mm in a file, the lattice would otherwise have 10^31 planes and the
+/// frame would never end.
+inline constexpr double kMaxPlanes = 65536.0;
+
+/// Throws InputError naming /render/slice_spacing when planes every
+/// `spacing` mm (`sliceSpacing` times the smallest voxel spacing `voxelMm`)
+/// over a lattice anchored at the origin would number more than kMaxPlanes
+/// across `bounds` (world space, anywhere relative to the origin).
+void checkPlaneCount(const Box& bounds, double spacing, double sliceSpacing, double voxelMm);
+
 } // namespace cutaway::render
