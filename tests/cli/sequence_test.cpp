@@ -283,9 +283,15 @@ TEST_F(CliTest, EveryBadSceneExitsTwoNamingItsLocation) {
                              r.output.find(": (root)") != std::string::npos ||
                              r.output.find(".json:") != std::string::npos;
         EXPECT_TRUE(located) << r.output;
+        // render refuses it the same way, before writing anything.
+        const fs::path out = m_dir / "out";
+        CommandResult render =
+            runCutaway("render " + entry.path().string() + " -o " + (out / "f_####.exr").string());
+        EXPECT_EQ(render.code, 2) << render.output;
+        EXPECT_FALSE(fs::exists(out)) << "render wrote something";
         ++count;
     }
-    EXPECT_GE(count, 30);
+    EXPECT_GE(count, 53);
 }
 
 } // namespace cutaway::test
