@@ -1,6 +1,7 @@
 // Device limits and the memory budget: what does not fit is refused up front
 // with an error naming the limit, and the count of memory held is exact.
 #include "core/error.hpp"
+#include "gpu/check.hpp"
 #include "gpu/memory.hpp"
 #include "gpu/resources.hpp"
 #include "gpu_fixture.hpp"
@@ -122,6 +123,32 @@ TEST_F(GpuTest, AVolumePastMaxImageDimension3DIsRefusedNamingTheLimit) {
         EXPECT_NE(what.find(std::to_string(limit + 1) + "x2x2"), std::string::npos) << what;
     }
     EXPECT_EQ(ctx().memoryInUse(), 0u);
+}
+
+} // namespace cutaway::test
+
+namespace cutaway::test {
+
+TEST(VulkanErrors, OutOfMemoryAndDeviceLossStopTheRunWithAClearMessage) {
+    // ResourceError: a sequence stops there (the next frames would fail alike).
+    const auto message = [](VkResult result) {
+        try {
+            gpu::throwVkError(result, "vkQueueSubmit(...)", "slice_renderer.cpp", 42);
+        } catch (const ResourceError& e) {
+            return std::string("resource: ") + e.what();
+        } catch (const RuntimeError& e) {
+            return std::string("runtime: ") + e.what();
+        }
+        return std::string();
+    };
+    const std::string lost = message(VK_ERROR_DEVICE_LOST);
+    EXPECT_NE(lost.find("resource: vkQueueSubmit(...) failed at slice_renderer.cpp:42: "
+                        "VK_ERROR_DEVICE_LOST (the device was lost"),
+              std::string::npos)
+        << lost;
+    EXPECT_NE(message(VK_ERROR_OUT_OF_DEVICE_MEMORY).find("resource: "), std::string::npos);
+    EXPECT_NE(message(VK_ERROR_OUT_OF_HOST_MEMORY).find("out of memory"), std::string::npos);
+    EXPECT_NE(message(VK_ERROR_FORMAT_NOT_SUPPORTED).find("runtime: "), std::string::npos);
 }
 
 } // namespace cutaway::test
