@@ -113,8 +113,9 @@ void checkPlaneCount(const Box& bounds, double spacing, double sliceSpacing, dou
     std::ostringstream message;
     message << "/render/slice_spacing: " << sliceSpacing << " x the smallest voxel spacing ("
             << voxelMm << " mm) puts " << planes << " planes across the " << 2.0 * reach
-            << " mm that the frame spans; at most " << kMaxPlanes
-            << " are drawn: raise /render/slice_spacing, or check the volume's spacing";
+            << " mm that the volume and its operators span; at most " << kMaxPlanes
+            << " are drawn: raise /render/slice_spacing, place the operators nearer the volume, "
+               "or check the volume's spacing";
     throw InputError(message.str());
 }
 
