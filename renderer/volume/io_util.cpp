@@ -81,6 +81,31 @@ std::ifstream openBinary(const std::filesystem::path& path) {
     return in;
 }
 
+MemoryBuffer::MemoryBuffer(std::span<const std::byte> bytes) {
+    // The get area is only read from: std::streambuf just wants non-const pointers.
+    char* begin = const_cast<char*>(reinterpret_cast<const char*>(bytes.data()));
+    setg(begin, begin, begin + bytes.size());
+}
+
+MemoryBuffer::pos_type MemoryBuffer::seekoff(off_type offset, std::ios_base::seekdir dir,
+                                             std::ios_base::openmode which) {
+    const off_type size = egptr() - eback();
+    off_type base = 0;
+    if (dir == std::ios_base::cur)
+        base = gptr() - eback();
+    else if (dir == std::ios_base::end)
+        base = size;
+    if ((which & std::ios_base::in) == 0 || offset < -base || offset > size - base) {
+        return pos_type(off_type(-1));
+    }
+    setg(eback(), eback() + (base + offset), egptr());
+    return pos_type(base + offset);
+}
+
+MemoryBuffer::pos_type MemoryBuffer::seekpos(pos_type position, std::ios_base::openmode which) {
+    return seekoff(off_type(position), std::ios_base::beg, which);
+}
+
 std::size_t readSome(std::istream& in, std::byte* dst, std::size_t size) {
     // Reads in chunks so a size beyond std::streamsize is still fine.
     std::size_t done = 0;

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <span>
+#include <streambuf>
 #include <string>
 #include <string_view>
 
@@ -31,6 +33,19 @@ std::uint64_t regularFileSize(const std::filesystem::path& path);
 
 /// Opens a file for binary reading (checked with regularFileSize first).
 std::ifstream openBinary(const std::filesystem::path& path);
+
+/// A read-only, seekable stream buffer over bytes in memory (not copied: they
+/// must outlive it), so the readers take `std::istream in(&buffer)` as they
+/// take a file.
+class MemoryBuffer : public std::streambuf {
+public:
+    explicit MemoryBuffer(std::span<const std::byte> bytes);
+
+protected:
+    pos_type seekoff(off_type offset, std::ios_base::seekdir dir,
+                     std::ios_base::openmode which) override;
+    pos_type seekpos(pos_type position, std::ios_base::openmode which) override;
+};
 
 /// Reads up to `size` bytes; returns how many were read (fewer only at the end).
 std::size_t readSome(std::istream& in, std::byte* dst, std::size_t size);

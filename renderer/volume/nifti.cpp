@@ -195,23 +195,22 @@ Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
     return p;
 }
 
-bool isGzip(const std::filesystem::path& path) {
-    std::ifstream in = detail::openBinary(path);
+/// Whether `in` starts with the gzip magic; leaves it at its start.
+bool isGzip(std::istream& in) {
     unsigned char magic[2] = {};
     in.read(reinterpret_cast<char*>(magic), 2);
-    return in.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+    const bool gzip = in.gcount() == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+    in.clear();
+    in.seekg(0);
+    return gzip;
 }
 
-} // namespace
-
-Volume readNifti(const std::filesystem::path& path) {
-    const std::string ctx = path.string();
-    const std::uint64_t fileSize = detail::regularFileSize(path);
+/// Reads a .nii or .nii.gz from the start of `in` (`fileSize` bytes).
+Volume readNiftiStream(std::istream& in, std::uint64_t fileSize, const std::string& ctx) {
     std::byte raw[kHeaderSize];
     Parsed p;
     // Sniff the content rather than trust the extension: a .nii may be gzipped.
-    if (isGzip(path)) {
-        std::ifstream in = detail::openBinary(path);
+    if (isGzip(in)) {
         detail::GzipReader reader(in, ctx);
         const std::size_t got = reader.read(raw, kHeaderSize);
         if (got < kHeaderSize) {
@@ -241,7 +240,6 @@ Volume readNifti(const std::filesystem::path& path) {
             throw InputError(ctx + ": too short for a NIfTI-1 header (" + std::to_string(fileSize) +
                              " bytes, need 348)");
         }
-        std::ifstream in = detail::openBinary(path);
         detail::readSome(in, raw, kHeaderSize);
         p = parseHeader(raw, ctx);
         if (p.offset > fileSize) {
@@ -265,6 +263,20 @@ Volume readNifti(const std::filesystem::path& path) {
         detail::swapBytes(p.volume.data.data(), p.volume.voxelCount(), voxelSize(p.volume.type));
     }
     return std::move(p.volume);
+}
+
+} // namespace
+
+Volume readNifti(const std::filesystem::path& path) {
+    const std::uint64_t size = detail::regularFileSize(path);
+    std::ifstream in = detail::openBinary(path);
+    return readNiftiStream(in, size, path.string());
+}
+
+Volume readNiftiBytes(std::span<const std::byte> bytes, const std::string& name) {
+    detail::MemoryBuffer buffer(bytes);
+    std::istream in(&buffer);
+    return readNiftiStream(in, bytes.size(), name);
 }
 
 } // namespace cutaway

@@ -39,12 +39,11 @@ const std::string& required(const std::optional<std::string>& field, const char*
     return *field;
 }
 
-} // namespace
-
-Volume readNrrd(const std::filesystem::path& path) {
-    const std::string ctx = path.string();
-    const std::uint64_t headerFileSize = detail::regularFileSize(path);
-    std::ifstream in = detail::openBinary(path);
+/// Reads a NRRD whose header starts at the beginning of `in` (`headerFileSize`
+/// bytes in all). A detached data file is looked up in `dataFolder`; without
+/// one (bytes in memory) a 'data file' field is an error.
+Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std::string& ctx,
+                      const std::optional<std::filesystem::path>& dataFolder) {
     bool endedByBlankLine = false;
     const detail::NrrdFields f = readNrrdHeader(in, ctx, endedByBlankLine);
 
@@ -158,7 +157,6 @@ Volume readNrrd(const std::filesystem::path& path) {
     if (lineSkip < 0) throw InputError(ctx + ": invalid line skip " + std::to_string(lineSkip));
 
     // The data: after the header's blank line, or in a detached data file.
-    std::filesystem::path dataPath = path;
     std::ifstream detached;
     std::istream* data = &in;
     std::string dataCtx = ctx;
@@ -170,8 +168,12 @@ Volume readNrrd(const std::filesystem::path& path) {
             throw InputError(ctx + ": multi-file 'data file' lists are not supported ('" + name +
                              "'); use a single data file");
         }
-        dataPath = std::filesystem::path(name);
-        if (dataPath.is_relative()) dataPath = path.parent_path() / dataPath;
+        if (!dataFolder) {
+            throw InputError(ctx + ": data file '" + name +
+                             "' cannot be read: a header read from memory has no folder");
+        }
+        std::filesystem::path dataPath(name);
+        if (dataPath.is_relative()) dataPath = *dataFolder / dataPath;
         std::error_code ec;
         if (!std::filesystem::is_regular_file(dataPath, ec)) {
             throw InputError(ctx + ": data file '" + name + "' not found (looked at " +
@@ -239,6 +241,20 @@ Volume readNrrd(const std::filesystem::path& path) {
         detail::swapBytes(volume.data.data(), volume.voxelCount(), voxelSize(type));
     }
     return volume;
+}
+
+} // namespace
+
+Volume readNrrd(const std::filesystem::path& path) {
+    const std::uint64_t size = detail::regularFileSize(path);
+    std::ifstream in = detail::openBinary(path);
+    return readNrrdStream(in, size, path.string(), path.parent_path());
+}
+
+Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name) {
+    detail::MemoryBuffer buffer(bytes);
+    std::istream in(&buffer);
+    return readNrrdStream(in, bytes.size(), name, std::nullopt);
 }
 
 } // namespace cutaway

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -71,6 +72,11 @@ Volume readVolume(const std::filesystem::path& path);
 Volume readNrrd(const std::filesystem::path& path);
 Volume readNifti(const std::filesystem::path& path);
 Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
+/// The NRRD and NIfTI readers over a file's bytes already in memory (not
+/// copied); `name` stands for the file in messages. A NRRD header read this way
+/// cannot name a detached data file (there is no folder to find it in).
+Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name);
+Volume readNiftiBytes(std::span<const std::byte> bytes, const std::string& name);
 
 /// Writes an attached-header NRRD (raw or gzip encoding), native voxel type,
 /// little endian, with spacings. Written to a temporary name, then renamed.
