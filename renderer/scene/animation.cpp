@@ -25,17 +25,31 @@ double tangent(const std::vector<Keyframe>& keys, std::size_t k, std::size_t c) 
 
 } // namespace
 
-// nlohmann would pad a too-short array with nulls: refuse instead.
+// Refuses what nlohmann would do: pad a too-short array with nulls, throw on an
+// index it cannot read ("01", 20 digits), and below a missing key create an
+// array for an index token (padded with nulls up to it) or throw for "".
 std::string pointerWriteProblem(const nlohmann::json& document, const std::string& target) {
+    // Built piecewise: GCC 12 warns (-Wrestrict, falsely) on "x" + substr.
+    const auto atPrefix = [&](std::size_t length, const char* problem) {
+        std::string message = "\"";
+        message += target.substr(0, length);
+        message += problem;
+        return message;
+    };
     const nlohmann::json* node = &document;
     std::size_t start = 1;
-    while (node && start <= target.size()) {
+    while (start <= target.size()) {
         const std::size_t end = std::min(target.find('/', start), target.size());
         const std::string token = target.substr(start, end - start);
-        if (node->is_array()) {
-            const bool digits =
-                !token.empty() && token.find_first_not_of("0123456789") == std::string::npos;
-            if (!digits || token.size() > 9 || std::stoul(token) >= node->size())
+        const bool digits = token.find_first_not_of("0123456789") == std::string::npos;
+        if (!node) {
+            // nlohmann makes an array of a missing value for "-" and for digits, "" included.
+            if (digits || token == "-")
+                return atPrefix(start - 1,
+                                "\" does not exist; only objects are created on the way");
+        } else if (node->is_array()) {
+            if (!digits || token.empty() || token.size() > 9 ||
+                (token.size() > 1 && token[0] == '0') || std::stoul(token) >= node->size())
                 return "\"" + token + "\" is not an index of an array of " +
                        std::to_string(node->size());
             node = &(*node)[std::stoul(token)];
@@ -43,11 +57,7 @@ std::string pointerWriteProblem(const nlohmann::json& document, const std::strin
             auto it = node->find(nlohmann::json::json_pointer("/" + token).back());
             node = it == node->end() ? nullptr : &*it;
         } else {
-            // Built piecewise: GCC 12 warns (-Wrestrict, falsely) on "x" + substr.
-            std::string message = "\"";
-            message += target.substr(0, start - 1);
-            message += "\" holds a value, not an object";
-            return message;
+            return atPrefix(start - 1, "\" holds a value, not an object");
         }
         start = end + 1;
     }

@@ -22,7 +22,8 @@ nlohmann::json applyTracks(const nlohmann::json& document, const Animation& anim
                            const std::string& source);
 
 /// Why `pointer` cannot be written into `document`, or "" when it can: objects
-/// along the way may be created, arrays may not grow, values cannot be entered.
+/// along the way may be created, arrays may not grow nor be created, values
+/// cannot be entered, and an index is plain digits ("1", not "01").
 std::string pointerWriteProblem(const nlohmann::json& document, const std::string& pointer);
 
 /// Parses "/json/pointer=VALUE"; throws InputError naming --set.

@@ -107,7 +107,8 @@ void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem
     }
 
     volume.file = readExistingFile(reader, "file", baseDir);
-    if (!volume.file.empty() && std::filesystem::is_regular_file(volume.file)) {
+    std::error_code ec; // a name the system refuses (too long, ...) was reported just above
+    if (!volume.file.empty() && std::filesystem::is_regular_file(volume.file, ec)) {
         if (!reader.has("raw") && !hasVolumeExtension(volume.file)) {
             reader.expected(reader.pointerOf("file"),
                             "a .nrrd, .nhdr, .nii or .nii.gz file, or a \"raw\" layout for a "

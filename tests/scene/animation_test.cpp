@@ -160,4 +160,39 @@ TEST(Animation, ATargetThatCannotBeWrittenNamesTheTrack) {
     }
 }
 
+// Found by fuzz_scene (fuzz/regressions/scene/track-target-*.json): nlohmann
+// throws its own exceptions on these pointers, or pads a new array with nulls.
+TEST(Animation, IndicesNlohmannWouldMisreadAreRefused) {
+    const nlohmann::json doc = patched(R"({"render": {"size": [4, 4]}})");
+    const auto problem = [&](const std::string& pointer) {
+        return pointerWriteProblem(doc, pointer);
+    };
+    EXPECT_EQ(problem("/render/size/1"), "");
+    EXPECT_EQ(problem("/camera/orbit/azimuth"), ""); // objects are created
+    EXPECT_EQ(problem("/render/size/01"), "\"01\" is not an index of an array of 2");
+    EXPECT_EQ(problem("/render/size/99999999999999999999999"),
+              "\"99999999999999999999999\" is not an index of an array of 2");
+    EXPECT_EQ(problem("/lights/100000000"),
+              "\"/lights\" does not exist; only objects are created on the way");
+    EXPECT_EQ(problem("/lights/directional/0/intensity"),
+              "\"/lights/directional\" does not exist; only objects are created on the way");
+    EXPECT_EQ(problem("/camera/orbit/"),
+              "\"/camera/orbit\" does not exist; only objects are created on the way");
+    EXPECT_EQ(problem("/render/"), ""); // an existing object may get the key ""
+    EXPECT_EQ(problem("/camera/orbit/-"),
+              "\"/camera/orbit\" does not exist; only objects are created on the way");
+
+    for (const char* target :
+         {"/lights/66666666666666666666666", "/render/size/01", "/a/7", "/a/b/"}) {
+        SCOPED_TRACE(target);
+        nlohmann::json scene = doc;
+        scene["animation"] = nlohmann::json::parse(
+            R"({"tracks": [{"target": "", "keys": [{"frame": 0, "value": 1}]}]})");
+        scene["animation"]["tracks"][0]["target"] = target;
+        const Scene parsed = parseScene(scene, "/nonexistent/scenes", "scene.json");
+        EXPECT_THROW(sceneAtFrame(parsed, 0), InputError);
+        EXPECT_THROW(applySettings(scene, {{target, 1}}), InputError);
+    }
+}
+
 } // namespace cutaway::test

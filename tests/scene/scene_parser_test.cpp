@@ -261,6 +261,12 @@ TEST(SceneParser, MissingVolumeFileNamesPointerAndPath) {
                            (dir.path() / "data/none.nii.gz").string());
     EXPECT_EQ(parseError(json::parse(R"({"version": 1, "volume": {"file": "."}})"), dir.path()),
               "scene.json: /volume/file: not a regular file: " + dir.path().string() + "/");
+    // A name the system refuses to look up (found by fuzz_scene: it threw filesystem_error).
+    json tooLong = json::parse(R"({"version": 1, "volume": {}})");
+    tooLong["volume"]["file"] = std::string(300, 'x') + ".nrrd";
+    EXPECT_EQ(parseError(tooLong, dir.path()), "scene.json: /volume/file: no such file: " +
+                                                   (dir.path() / std::string(300, 'x')).string() +
+                                                   ".nrrd");
 }
 
 TEST(SceneParser, HeaderlessFilesNeedARawLayout) {
