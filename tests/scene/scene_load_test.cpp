@@ -207,6 +207,10 @@ const std::map<std::string, std::string> kBadScenes = {
      ": /labels/names/tumour: expected an integer in [0, 2147483647], got -4"},
     {"50-transfer-label-without-points.json",
      ": /transfer/labels/0/points: missing; expected an array of at least 2 objects"},
+    {"51-truncated.json",
+     ":4:38: JSON syntax error: while parsing object - unexpected end of input"},
+    {"52-size-zero.json", ": /volume/size/1: expected an integer in [8, 1024], got 0"},
+    {"53-nan-literal.json", ":4:22: JSON syntax error: while parsing value - invalid literal"},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {
