@@ -5,11 +5,13 @@
 #   make bench  the paper's Table 1 benchmark and VTK's CPU ray caster on the same work:
 #               tables, bench/results.json and the results section of docs/performance.md
 #   make gallery  render every gallery scene at 512^2: docs/gallery/*.png and docs/gallery.md
+#   make fuzz   the libFuzzer targets of fuzz/ (clang, ASan + UBSan, in build-fuzz/), each run
+#               for FUZZ_SECONDS; fails if any finds a crash
 BUILD ?= build
 JOBS ?= $(shell nproc)
 BUILD_TYPE ?= Release
 
-.PHONY: all deps configure build demo test test-sanitize bench gallery clean format
+.PHONY: all deps configure build demo test test-sanitize fuzz bench gallery clean format
 
 all: build
 
@@ -46,6 +48,20 @@ test-sanitize: deps
 	@$(SANITIZE_ENV) ASAN_OPTIONS=detect_leaks=0 \
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure --timeout 900 -j $(JOBS) -LE unit
 
+# The scene parser and the NRRD and NIfTI readers under libFuzzer, built with
+# Debian's clang; each target runs on a copy of its seed corpus in
+# $(FUZZ_BUILD)/corpus/, crashing inputs land in $(FUZZ_BUILD)/crashes/.
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_CXX ?= /usr/bin/clang++
+fuzz:
+	@bash scripts/install-deps.sh --fuzz
+	@if [ ! -f $(FUZZ_BUILD)/build.ninja ]; then \
+	  cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	    -DCMAKE_CXX_COMPILER=$(FUZZ_CXX) -DCUTAWAY_FUZZ=ON >/dev/null; fi
+	@cmake --build $(FUZZ_BUILD) --parallel $(JOBS)
+	@bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+
 bench: configure
 	@bash scripts/install-deps.sh --bench
 	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_bench
@@ -62,4 +78,4 @@ format:
 	@git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i
 
 clean:
-	@rm -rf $(BUILD) $(SANITIZE_BUILD) out
+	@rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) out

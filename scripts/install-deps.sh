@@ -2,7 +2,8 @@
 # Installs the Debian packages cutaway needs to build, test and run.
 # Idempotent and quiet: when everything is present it prints nothing and
 # touches nothing. Used by `make demo`, `make test` and CI alike; `make bench`
-# passes --bench for the VTK comparison's packages as well.
+# passes --bench for the VTK comparison's packages as well, `make fuzz` --fuzz
+# for clang and libFuzzer.
 set -euo pipefail
 
 packages=(
@@ -15,9 +16,15 @@ packages=(
 )
 # The benchmark's comparison with VTK's CPU ray caster (bench/vtk_bench.py)
 # needs VTK's Python module and an X server for its render window.
-if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(python3-vtk9 xvfb xauth)
-fi
+# The fuzz targets (fuzz/) need clang and its libFuzzer runtime
+# (libclang_rt.fuzzer-x86_64.a, in libclang-rt-14-dev on Debian 12).
+for option in "$@"; do
+  case "$option" in
+    --bench) packages+=(python3-vtk9 xvfb xauth) ;;
+    --fuzz) packages+=(clang libclang-rt-dev) ;;
+    *) echo "usage: $0 [--bench] [--fuzz]" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,196 @@
+#!/usr/bin/env python3
+"""Writes the seed corpora and dictionaries of the fuzz targets (run from the
+repository root; the output is committed, so this runs only when the seeds
+should change):
+
+  fuzz/corpus/scene/  the example scenes of scenes/ and the bad scenes of tests/scene/bad/
+  fuzz/corpus/nrrd/   tiny hand-made NRRD files: every voxel type, both byte orders, raw and gzip
+  fuzz/corpus/nifti/  tiny hand-made NIfTI-1 files, .nii and .nii.gz
+  fuzz/scene.dict     the keys and enum strings of scenes/scene.schema.json
+  fuzz/nrrd.dict      NRRD magic, field names and values
+
+Deterministic: gzip streams carry no time stamp, files are written in order.
+"""
+import gzip
+import json
+import shutil
+import struct
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+CORPUS = ROOT / "fuzz" / "corpus"
+
+
+def gz(data: bytes) -> bytes:
+    return gzip.compress(data, compresslevel=6, mtime=0)
+
+
+def fresh(name: str) -> Path:
+    folder = CORPUS / name
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    return folder
+
+
+def scene_seeds() -> None:
+    out = fresh("scene")
+    for src in sorted((ROOT / "scenes").glob("*.json")) + sorted(
+        (ROOT / "tests" / "scene" / "bad").glob("*.json")
+    ):
+        if src.name != "scene.schema.json":
+            shutil.copyfile(src, out / src.name)
+
+
+def nrrd(fields: str, data: bytes, magic: str = "NRRD0004") -> bytes:
+    return (magic + "\n" + fields + "\n").encode() + data
+
+
+def nrrd_seeds() -> None:
+    out = fresh("nrrd")
+    u8 = bytes(range(8))
+    seeds = {
+        "uint8-raw.nrrd": nrrd(
+            "type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\nspacings: 1 1 2.5\n", u8
+        ),
+        "int8-raw-comments.nrrd": nrrd(
+            "# a comment\ntype: signed char\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n"
+            "content: seed\nkinds: domain domain domain\n",
+            bytes([0x80, 0xFF, 0, 1, 2, 3, 4, 0x7F]),
+            "NRRD0001",
+        ),
+        "int16-big-directions.nrrd": nrrd(
+            "type: short\ndimension: 3\nsizes: 2 2 1\nendian: big\nencoding: raw\n"
+            "space: left-posterior-superior\n"
+            "space directions: (0.5,0,0) (0,0.5,0) (0,0,1.5)\nspace origin: (-1,-2,-3)\n",
+            struct.pack(">4h", -1024, 0, 40, 3071),
+        ),
+        "uint16-little-gzip.nrrd": nrrd(
+            "type: unsigned short\ndimension: 3\nsizes: 2 2 2\nendian: little\nencoding: gzip\n",
+            gz(struct.pack("<8H", *range(0, 8000, 1000))),
+        ),
+        "int32-gz-byteskip.nrrd": nrrd(
+            "type: int32\ndimension: 3\nsizes: 1 2 2\nendian: little\nencoding: gz\nbyte skip: 4\n",
+            gz(b"skip" + struct.pack("<4i", -5, 0, 5, 1 << 20)),
+        ),
+        "uint32-lineskip.nrrd": nrrd(
+            "type: uint\ndimension: 3\nsizes: 2 1 1\nendian: little\nencoding: raw\nline skip: 1\n",
+            b"a line to skip\n" + struct.pack("<2I", 0, 4000000000),
+        ),
+        "float-4d-scaled.nrrd": nrrd(
+            "type: float\ndimension: 4\nsizes: 1 2 1 2\nendian: little\nencoding: raw\n"
+            "space directions: none (1,0,0) (0,1,0) (0,0,1)\n"
+            "cutaway_slope:=2\ncutaway_inter:=-1\n",
+            struct.pack("<4f", 0.0, 1.5, float("nan"), -2.0),
+            "NRRD0005",
+        ),
+        "double-byteskip-end.nrrd": nrrd(
+            "type: double\ndimension: 3\nsizes: 1 1 2\nendian: big\nencoding: raw\n"
+            "byte skip: -1\n",
+            b"padding" + struct.pack(">2d", 1e-3, 1e3),
+        ),
+        "float-gzip-two-members.nrrd": nrrd(
+            "type: float\ndimension: 3\nsizes: 2 1 1\nendian: little\nencoding: gzip\n",
+            gz(struct.pack("<f", 1.0)) + gz(struct.pack("<f", 2.0)),
+        ),
+        "detached-header.nhdr": nrrd(
+            "type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\ndata file: data.raw\n", b""
+        ),
+    }
+    for name, content in seeds.items():
+        (out / name).write_bytes(content)
+
+
+def nifti(
+    dims, datatype: int, bitpix: int, data: bytes, *, big=False, pixdim=(1, 1, 1),
+    vox_offset=352.0, slope=0.0, inter=0.0, qform=0, sform=0, extension=b"\0\0\0\0",
+) -> bytes:
+    e = ">" if big else "<"
+    h = bytearray(348)
+    struct.pack_into(e + "i", h, 0, 348)
+    full = list(dims) + [1] * (7 - len(dims))
+    struct.pack_into(e + "8h", h, 40, len(dims), *full)
+    struct.pack_into(e + "2h", h, 70, datatype, bitpix)
+    struct.pack_into(e + "8f", h, 76, 1.0, *pixdim, 1, 1, 1, 1)
+    struct.pack_into(e + "3f", h, 108, vox_offset, slope, inter)
+    struct.pack_into(e + "2h", h, 252, qform, sform)
+    struct.pack_into(e + "3f", h, 268, 1.0, 2.0, 3.0)  # quatern_x/y/z (the qform's offsets)
+    for row, offset in enumerate((280, 296, 312)):  # srow_x/y/z
+        struct.pack_into(e + "4f", h, offset, *[1.0 if c == row else 0.0 for c in range(3)], -10)
+    h[344:348] = b"n+1\0"
+    return bytes(h) + extension + data
+
+
+def nifti_seeds() -> None:
+    out = fresh("nifti")
+    seeds = {
+        "uint8.nii": nifti((2, 2, 2), 2, 8, bytes(range(8))),
+        "int16-big-scaled.nii": nifti(
+            (2, 2, 1), 4, 16, struct.pack(">4h", -1024, 0, 40, 3071), big=True,
+            pixdim=(0.5, -0.5, 2.0), slope=0.5, inter=-10.0, qform=1,
+        ),
+        "float32.nii.gz": gz(
+            nifti((2, 1, 2), 16, 32, struct.pack("<4f", 0.0, 0.25, float("inf"), -1.0), sform=1)
+        ),
+        "uint16-4d.nii.gz": gz(nifti((2, 2, 1, 1), 512, 16, struct.pack("<4H", 0, 1, 2, 65535))),
+        "int32-old-offset.nii": nifti(
+            (1, 1, 2), 8, 32, struct.pack("<2i", -7, 7), vox_offset=0.0, pixdim=(0, 0, 0)
+        ),
+        "float64-extension.nii": nifti(
+            (1, 2, 1), 64, 64, struct.pack("<2d", 1.0, 2.0), vox_offset=368.0,
+            extension=b"\1\0\0\0" + struct.pack("<2i", 16, 0) + b"cutaway!",
+        ),
+        "int8-big.nii.gz": gz(nifti((2, 1, 1), 256, 8, bytes([0x80, 0x7F]), big=True)),
+        "uint32.nii": nifti((1, 1, 1), 768, 32, struct.pack("<I", 123456)),
+    }
+    for name, content in seeds.items():
+        (out / name).write_bytes(content)
+
+
+def dictionary(path: Path, words) -> None:
+    def quoted(word: str) -> str:  # libFuzzer's escapes: \\ \" \xAB
+        return '"' + "".join(
+            "\\" + c if c in '\\"' else c if " " <= c <= "~" else f"\\x{ord(c):02X}" for c in word
+        ) + '"'
+
+    lines = [f"w{i:03d}={quoted(w)}" for i, w in enumerate(words)]
+    path.write_text("# Generated by fuzz/make_corpus.py\n" + "\n".join(lines) + "\n")
+
+
+def scene_dict() -> None:
+    schema = json.loads((ROOT / "scenes" / "scene.schema.json").read_text())
+    keys, values = set(), set()
+
+    def walk(node):
+        if isinstance(node, dict):
+            for k, v in node.items():
+                if k == "properties" and isinstance(v, dict):
+                    keys.update(v)
+                if k in ("enum", "const"):
+                    values.update(x for x in (v if isinstance(v, list) else [v]) if isinstance(x, str))
+                walk(v)
+        elif isinstance(node, list):
+            for x in node:
+                walk(x)
+
+    walk(schema)
+    words = [f'"{k}":' for k in sorted(keys)] + [f'"{v}"' for v in sorted(values)]
+    words += ["/camera/orbit/azimuth", "/operators/0/params/", "true", "false", "null", "1e400",
+              "-0", "[", "]", "{", "}"]
+    dictionary(ROOT / "fuzz" / "scene.dict", words)
+
+
+def nrrd_dict() -> None:
+    fields = ["type", "dimension", "sizes", "endian", "encoding", "spacings", "space directions",
+              "space origin", "data file", "byte skip", "line skip", "kinds", "space"]
+    values = ["NRRD0004", "uint8", "short", "unsigned short", "int", "float", "double", "block",
+              "int64", "raw", "gzip", "bzip2", "big", "little", "none", "(1,0,0)", "LIST",
+              "cutaway_slope:=", "cutaway_inter:=", "\n\n", "-1", "nan", "inf"]
+    dictionary(ROOT / "fuzz" / "nrrd.dict", [f + ": " for f in fields] + values)
+
+
+if __name__ == "__main__":
+    scene_seeds()
+    nrrd_seeds()
+    nifti_seeds()
+    scene_dict()
+    nrrd_dict()
