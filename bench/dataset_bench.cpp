@@ -112,6 +112,7 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
     // render's: from here on, as `cutaway render` would hold it.
     const double bakePeak = peakRssMiB();
     const bool reset = resetPeakRss();
+    ctx.resetMemoryPeak();
     double scanMiB = 0.0;
     nlohmann::json dims;
     VtkSpec vtk(entry.dataset, base, o);
@@ -171,7 +172,9 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
     }
     if (!o.vtkDir.empty()) vtk.write(o.vtkDir);
     const double peak = peakRssMiB();
+    const double devicePeak = double(ctx.memoryPeak()) / (1024.0 * 1024.0);
     for (auto& r : records) {
+        r["device_peak_mib"] = devicePeak;
         r["bake_ms"] = bakes;
         r["scan_mib"] = scanMiB;
         r["peak_rss_mib"] = reset ? nlohmann::json(peak) : nlohmann::json();

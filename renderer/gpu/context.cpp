@@ -176,7 +176,10 @@ DeviceMemory Context::allocate(const VkMemoryRequirements& req, VkMemoryProperty
                      formatBytes(memoryInUse()) + " held; --memory-budget below that would " +
                      "name the limit up front");
     VK_CHECK(result);
-    m_memoryInUse.fetch_add(req.size);
+    const VkDeviceSize held = m_memoryInUse.fetch_add(req.size) + req.size;
+    VkDeviceSize peak = m_memoryPeak.load();
+    while (held > peak && !m_memoryPeak.compare_exchange_weak(peak, held)) {
+    }
     return DeviceMemory(m_device, memory, req.size, &m_memoryInUse);
 }
 

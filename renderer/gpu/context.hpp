@@ -60,6 +60,9 @@ public:
     const MemoryLimits& memoryLimits() const { return m_memoryLimits; }
     /// Bytes of device memory held now by what allocate() returned.
     VkDeviceSize memoryInUse() const { return m_memoryInUse.load(); }
+    /// The most held at once since the context was made or the last reset.
+    VkDeviceSize memoryPeak() const { return m_memoryPeak.load(); }
+    void resetMemoryPeak() const { m_memoryPeak.store(memoryInUse()); }
     /// Memory for `req` with `flags`. Throws RuntimeError naming `what` (e.g.
     /// "a 3D image of 256x256x256 R16_UNORM") and the limit when it exceeds
     /// one (gpu/memory.hpp) or the device is out of memory.
@@ -88,6 +91,7 @@ private:
     VkPhysicalDeviceMemoryProperties m_memory{};
     MemoryLimits m_memoryLimits;
     mutable std::atomic<VkDeviceSize> m_memoryInUse{0};
+    mutable std::atomic<VkDeviceSize> m_memoryPeak{0};
     DeviceFormats m_formats;
     uint32_t m_queueFamily = 0;
     VkDevice m_device = VK_NULL_HANDLE;

@@ -86,8 +86,12 @@ TEST_F(GpuTest, MemoryInUseCountsEveryAllocationAndReturnsToZero) {
         gpu::Image moved = std::move(a); // moving does not count twice
         EXPECT_GE(ctx().memoryInUse(), one + kMiB);
         EXPECT_LT(ctx().memoryInUse(), 2 * one + kMiB);
+        EXPECT_EQ(ctx().memoryPeak(), ctx().memoryInUse());
     }
     EXPECT_EQ(ctx().memoryInUse(), 0u);
+    EXPECT_GE(ctx().memoryPeak(), kMiB); // the peak stays until reset
+    ctx().resetMemoryPeak();
+    EXPECT_EQ(ctx().memoryPeak(), 0u);
 }
 
 TEST(GpuMemoryBudget, AnImagePastTheBudgetIsRefusedNamingItAndWhatItWas) {
