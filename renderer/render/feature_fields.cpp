@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <set>
 #include <sstream>
 
 namespace cutaway::render {
@@ -37,12 +38,9 @@ double FeatureFields::threshold(const Alignment& alignment, const GpuVolume& vol
     return *m_otsu;
 }
 
-const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVolume& volume) {
-    const Alignment& a = spec.alignment;
-    if (a.mode == AlignmentMode::Axis) return m_none;
+FeatureFields::Described FeatureFields::describe(const Alignment& a, const GpuVolume& volume) {
     if (m_serial != volume.serial) { // another volume: nothing kept applies
         m_fields.clear();
-        m_used.clear();
         m_otsu.reset();
         m_serial = volume.serial;
     }
@@ -70,8 +68,21 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
             }
         }
     }
-    const std::string k = key.str();
-    m_used[k] = true;
+    return {key.str(), note};
+}
+
+void FeatureFields::keepOnly(const std::vector<OperatorSpec>& specs, const GpuVolume& volume) {
+    std::set<std::string> wanted;
+    for (const OperatorSpec& spec : specs)
+        if (spec.alignment.mode != AlignmentMode::Axis)
+            wanted.insert(describe(spec.alignment, volume).key);
+    std::erase_if(m_fields, [&](const auto& field) { return !wanted.count(field.first); });
+}
+
+const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVolume& volume) {
+    const Alignment& a = spec.alignment;
+    if (a.mode == AlignmentMode::Axis) return m_none;
+    const auto [k, note] = describe(a, volume);
     auto found = m_fields.find(k);
     if (found != m_fields.end()) return found->second;
 
@@ -105,16 +116,6 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     m_notes.push_back(spec.name + ": " + note + ", baked in " + took + " s");
     ++m_bakes;
     return m_fields.emplace(k, std::move(field)).first->second;
-}
-
-void FeatureFields::keepOnly() {
-    for (auto it = m_fields.begin(); it != m_fields.end();) {
-        if (m_used.count(it->first))
-            ++it;
-        else
-            it = m_fields.erase(it);
-    }
-    m_used.clear();
 }
 
 std::vector<std::string> FeatureFields::takeNotes() {

@@ -23,8 +23,10 @@ public:
     /// texture for axis alignment. Valid until the next call of keepOnly.
     const gpu::Image& fieldFor(const OperatorSpec& spec, const GpuVolume& volume);
 
-    /// Frees the fields not asked for since the last call (call once per frame).
-    void keepOnly();
+    /// Frees the fields none of `specs` reads. Called once per frame before
+    /// fieldFor, so a field no longer wanted is gone before a new one bakes
+    /// (switching alignment does not hold both at once).
+    void keepOnly(const std::vector<OperatorSpec>& specs, const GpuVolume& volume);
 
     /// The background threshold surface alignment used, in the volume's
     /// values: the scene's, or Otsu's (computed once per volume).
@@ -36,13 +38,18 @@ public:
     int bakes() const { return m_bakes; }
 
 private:
+    struct Described {
+        std::string key;  ///< equal keys, equal fields
+        std::string note; ///< what the field is, for takeNotes
+    };
+    Described describe(const Alignment& alignment, const GpuVolume& volume);
+
     const gpu::Context& m_ctx;
     bake::FeatureBaker m_baker;
     gpu::Image m_none;
     std::uint64_t m_serial = 0;
     std::optional<double> m_otsu;
     std::map<std::string, gpu::Image> m_fields;
-    std::map<std::string, bool> m_used;
     std::vector<std::string> m_notes;
     int m_bakes = 0;
 };

@@ -57,6 +57,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
     }
     operators::checkNoOverlap(specs, boxes); // before anything changes
     m_operators.resize(specs.size());
+    m_features.keepOnly(specs, volume);
     for (std::size_t i = 0; i < specs.size(); ++i) {
         auto& op = m_operators[i];
         const OperatorSpec& spec = specs[i];
@@ -88,7 +89,6 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
         const shader::OperatorUniforms u = uniformsOf(spec, op->box, i);
         std::memcpy(op->uniforms.mapped, &u, sizeof u);
     }
-    m_features.keepOnly();
 }
 
 } // namespace cutaway::render
