@@ -1,6 +1,7 @@
 // What does not change between frames is not redone: one upload and gradient
 // bake per sequence, unless a track animates the volume itself.
 #include "gpu_fixture.hpp"
+#include "job/render_job.hpp"
 #include "job/sequence.hpp"
 #include "scene/scene.hpp"
 
@@ -36,6 +37,48 @@ TEST_F(GpuTest, VolumeIsUploadedOncePerSequence) {
         "keys": [ { "frame": 0, "value": [0, 255] }, { "frame": 3, "value": [0, 120] } ] })");
     EXPECT_EQ(windowed.rendered, 4);
     EXPECT_EQ(windowed.volumeUploads, 4);
+}
+
+} // namespace cutaway::test
+
+namespace cutaway::test {
+namespace {
+
+Scene alignedScene(const std::string& alignment) {
+    return parseScene(nlohmann::json::parse(R"({ "version": 1,
+        "volume": { "phantom": "head", "size": [64, 64, 64] },
+        "render": { "size": [32, 32] },
+        "operators": [ { "type": "peeler",
+          "placement": { "translate": [0, 0, 16], "scale": [32, 32, 16] },
+          "alignment": )" + alignment + R"( } ] })"),
+                      std::filesystem::temp_directory_path(), "aligned.json");
+}
+
+} // namespace
+
+TEST_F(GpuTest, FeatureFieldsAreKeptWhileWantedAndFreedBeforeTheNextBakes) {
+    const Scene surface = alignedScene(R"({ "mode": "surface", "depth": 4 })");
+    const Scene segment = alignedScene(R"({ "mode": "segment", "range": [100, 255] })");
+    VkDeviceSize segmentAlone = 0;
+    {
+        job::FrameRenderer fresh(ctx());
+        ctx().resetMemoryPeak();
+        fresh.render(segment);
+        segmentAlone = ctx().memoryPeak();
+    }
+    job::FrameRenderer renderer(ctx());
+    renderer.render(surface);
+    EXPECT_EQ(renderer.takeNotes().size(), 1u) << "one field baked";
+    renderer.render(surface);
+    EXPECT_TRUE(renderer.takeNotes().empty()) << "the field is kept while wanted";
+    // Switching alignment: the surface field (RGBA16F, 2 MiB at 64^3) is
+    // freed before the segment mask bakes, so the peak is what the segment
+    // frame needs alone.
+    ctx().resetMemoryPeak();
+    renderer.render(segment);
+    EXPECT_EQ(renderer.takeNotes().size(), 1u);
+    EXPECT_LT(ctx().memoryPeak(), segmentAlone + 64u * 64u * 64u * 8u / 2u)
+        << "the old field was held during the bake";
 }
 
 } // namespace cutaway::test
