@@ -58,7 +58,6 @@ shader::FeatureBakeParams baseParams(glm::ivec3 dims, glm::dvec3 spacing) {
     shader::FeatureBakeParams p{};
     p.dims = dims;
     p.spacing = glm::vec3(spacing);
-    p.halfInvSpacing = glm::vec3(0.5 / spacing);
     return p;
 }
 
@@ -101,9 +100,9 @@ void checkSegmentInputs(const std::vector<uint8_t>& indicator, glm::ivec3 dims, 
         throw InputError("segment mask: the band width must be a finite number >= 0 mm");
 }
 
-// field_finish.comp: 8x8 invocations per group, each a column of 16 voxels.
+// field_finish.comp: 8x8 invocations per group, one voxel each.
 glm::uvec3 finishGroups(glm::ivec3 dims) {
-    return {groups(dims.x, 8), groups(dims.y, 8), groups(dims.z, 16)};
+    return {groups(dims.x, 8), groups(dims.y, 8), uint32_t(dims.z)};
 }
 
 void runPasses(const gpu::Context& ctx, VkPipelineLayout layout,
@@ -241,21 +240,18 @@ gpu::DescriptorSet FeatureBaker::makeSet(const gpu::Image& texture, const gpu::I
 
 namespace {
 
-// Two r32f ping-pong images for the passes and the RGBA16F result.
+// The r32f image every pass works in, in place (each reads a whole line, or
+// the part of it ahead, before writing it: a second image would add 4 bytes
+// per voxel to the peak memory), and the R16F result.
 struct Images {
-    gpu::Image a, b, out;
+    gpu::Image scratch, out;
 };
 
-// `second`: a second scratch image (passes that cannot work in place).
-Images makeImages(const gpu::Context& ctx, VkExtent3D e, bool second) {
+Images makeImages(const gpu::Context& ctx, VkExtent3D e) {
     Images images;
-    images.a = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                VK_IMAGE_USAGE_STORAGE_BIT);
-    if (second)
-        images.b = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                    VK_IMAGE_USAGE_STORAGE_BIT);
-    images.out =
-        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16G16B16A16_SFLOAT, e, kFieldUsage);
+    images.scratch = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
+                                      VK_IMAGE_USAGE_STORAGE_BIT);
+    images.out = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, kFeatureFieldFormat, e, kFieldUsage);
     return images;
 }
 
@@ -272,11 +268,8 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
                          " voxels; the distance transform handles at most " +
                          std::to_string(shader::kEdtMaxLine) + " voxels per side");
 
-    // The envelope passes read a whole line before writing it, so every pass
-    // works in place in one scratch image (a second would add 4 bytes per voxel
-    // to the peak memory).
-    Images images = makeImages(m_ctx, e, false);
-    gpu::Image &a = images.a, &out = images.out;
+    Images images = makeImages(m_ctx, e);
+    gpu::Image &a = images.scratch, &out = images.out;
     gpu::DescriptorSet set = makeSet(values, a, a, out); // -> a, a -> a, a -> out
 
     shader::FeatureBakeParams p = baseParams(dims, spacing);
@@ -301,13 +294,11 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
     const VkExtent3D e{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
     const gpu::Image texture = uploadMask(m_ctx, indicator, dims);
 
-    Images images = makeImages(m_ctx, e, true);
-    gpu::Image &a = images.a, &b = images.b, &out = images.out;
-    gpu::DescriptorSet xSet = makeSet(texture, b, a, out);      // indicator -> a
-    gpu::DescriptorSet ySet = makeSet(texture, a, b, out);      // a -> b
-    gpu::DescriptorSet zSet = makeSet(texture, b, a, out);      // b -> a
-    gpu::DescriptorSet finishSet = makeSet(texture, a, b, out); // a -> out
-    const VkDescriptorSet sets[3] = {xSet.set, ySet.set, zSet.set};
+    Images images = makeImages(m_ctx, e);
+    gpu::Image &a = images.scratch, &out = images.out;
+    // indicator -> a, a -> a along y and z, a -> out. A blur pass reads each
+    // voxel of its line into a ring before it writes that voxel.
+    gpu::DescriptorSet set = makeSet(texture, a, a, out);
 
     const glm::uvec3 lineGroups[3] = {{groups(dims.y, 8), groups(dims.z, 8), 1},
                                       {groups(dims.x, 8), groups(dims.z, 8), 1},
@@ -320,12 +311,12 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
         p.sigma = blur.sigma;
         p.radius = blur.radius;
         p.mode = axis == 0 ? 1 : 0;
-        passes.push_back({m_blur.get(), sets[axis], p, lineGroups[axis]});
+        passes.push_back({m_blur.get(), set.set, p, lineGroups[axis]});
     }
     shader::FeatureBakeParams p = baseParams(dims, spacing);
     p.mode = 1;
-    passes.push_back({m_finish.get(), finishSet.set, p, finishGroups(dims)});
-    runPasses(m_ctx, m_layout.get(), {&a, &b}, out, passes);
+    passes.push_back({m_finish.get(), set.set, p, finishGroups(dims)});
+    runPasses(m_ctx, m_layout.get(), {&a}, out, passes);
     return std::move(out);
 }
 

@@ -5,8 +5,10 @@
 //     each object voxel to the nearest background voxel, with its gradient;
 //   segment mask M (segment alignment): the segment indicator smoothed by a
 //     Gaussian and encoded so that M >= 0.5 exactly at the segment's voxels.
-// Both are RGBA16F 3D textures: xyz = unit gradient (toward increasing value,
-// i.e. into the object or segment), w = the field. See shaders/shared/feature_bake.h.
+// Both are R16F 3D textures of the field alone (2 bytes per voxel); the
+// operator shader takes their gradient by central differences where it needs
+// it (featureGradientOf in shaders/shared/feature.h). See
+// shaders/shared/feature_bake.h.
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 #include "gpu/pipeline.hpp"
@@ -18,6 +20,9 @@
 
 namespace cutaway::bake {
 
+/// The format of both feature fields.
+constexpr VkFormat kFeatureFieldFormat = VK_FORMAT_R16_SFLOAT;
+
 class FeatureBaker {
 public:
     explicit FeatureBaker(const gpu::Context& ctx);
@@ -25,12 +30,10 @@ public:
     /// Surface alignment: the distance field DT. `values` is the uploaded volume
     /// texture (R16_UNORM, 3D, SHADER_READ_ONLY_OPTIMAL; see bake/volume_upload.hpp).
     /// A voxel is object when its normalized value > `threshold` (0..1), else background.
-    /// Result: RGBA16F, same extent, SHADER_READ_ONLY_OPTIMAL, usage SAMPLED | STORAGE |
-    /// TRANSFER_SRC.
-    ///   w   = exact Euclidean distance in mm from the voxel centre to the nearest
-    ///         background voxel centre (0 for background; 65504, the largest half, when
-    ///         there is no background voxel at all); anisotropic spacing honoured;
-    ///   xyz = unit gradient of DT by central differences (into the object), zero where flat.
+    /// Result: kFeatureFieldFormat (R16F), same extent, SHADER_READ_ONLY_OPTIMAL, usage
+    /// SAMPLED | STORAGE | TRANSFER_SRC: the exact Euclidean distance in mm from the voxel
+    /// centre to the nearest background voxel centre (0 for background; 65504, the largest
+    /// half, when there is no background voxel at all); anisotropic spacing honoured.
     /// Throws InputError when a side is longer than 1024 voxels.
     gpu::Image distanceField(const gpu::Image& values, glm::dvec3 spacing, float threshold) const;
 
@@ -38,16 +41,15 @@ public:
     /// voxel (x fastest), non-zero inside the segment of interest. It is smoothed by a
     /// separable Gaussian of sigma = bandMm / 2 mm (per axis sigma / spacing voxels;
     /// radius ceil(3 sigma) voxels, at most 32; bandMm == 0: no smoothing), borders
-    /// clamped. Result as for distanceField:
-    ///   w   = maskEncode(s, inside) of shared/feature_bake.h, s the smoothed indicator:
-    ///         max(s, 0.5) inside, min(s, 0.498) outside;
-    ///   xyz = unit gradient of s by central differences (into the segment), zero where flat.
+    /// clamped. Result as for distanceField: maskEncode(s, inside) of
+    /// shared/feature_bake.h, s the smoothed indicator: max(s, 0.5) inside, min(s, 0.498)
+    /// outside.
     gpu::Image segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
                            glm::dvec3 spacing, double bandMm) const;
 
 private:
     /// A set with every binding written: 0 `texture` (sampled), 1 `src`, 2 `dst`
-    /// (r32f storage), 3 `out` (rgba16f storage), all but `texture` in GENERAL.
+    /// (r32f storage, may be one image), 3 `out` (r16f storage), all but `texture` in GENERAL.
     gpu::DescriptorSet makeSet(const gpu::Image& texture, const gpu::Image& src,
                                const gpu::Image& dst, const gpu::Image& out) const;
 

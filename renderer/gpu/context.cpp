@@ -113,8 +113,10 @@ Context::Context(const ContextOptions& options)
         VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
         f13.dynamicRendering = VK_TRUE;
         f13.synchronization2 = VK_TRUE;
+        VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f13, {}};
+        features.features.shaderStorageImageExtendedFormats = VK_TRUE; // r16f feature fields
         VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-        info.pNext = &f13;
+        info.pNext = &features;
         info.queueCreateInfoCount = 1;
         info.pQueueCreateInfos = &queueInfo;
         VK_CHECK(vkCreateDevice(m_physicalDevice, &info, nullptr, &m_device));

@@ -65,6 +65,8 @@ std::string check(VkPhysicalDevice device, DeviceChoice& choice) {
     vkGetPhysicalDeviceFeatures2(device, &f2);
     if (!f13.dynamicRendering || !f13.synchronization2)
         return "lacks dynamicRendering or synchronization2";
+    if (!f2.features.shaderStorageImageExtendedFormats)
+        return "lacks shaderStorageImageExtendedFormats (R16F feature fields)";
 
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
@@ -85,6 +87,9 @@ std::string check(VkPhysicalDevice device, DeviceChoice& choice) {
     if (!hasFeatures(device, VK_FORMAT_R8G8B8A8_SNORM, opt,
                      sampledLinear | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
         return "cannot store and filter RGBA8_SNORM gradient textures";
+    if (!hasFeatures(device, VK_FORMAT_R16_SFLOAT, opt,
+                     sampledLinear | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
+        return "cannot store and filter R16F feature fields";
     if (!hasFeatures(device, VK_FORMAT_R16G16B16A16_SFLOAT, opt, sampledLinear))
         return "cannot filter RGBA16F transfer-function textures";
 

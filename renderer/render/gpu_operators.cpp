@@ -19,7 +19,7 @@ bool sameMap(const OperatorSpec& a, const OperatorSpec& b) {
 }
 
 shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::WorldBox& box,
-                                    std::size_t index) {
+                                    std::size_t index, const GpuVolume& volume) {
     shader::OperatorUniforms u{};
     u.localToWorld = glm::mat4(spec.localToWorld);
     u.worldToLocal = glm::mat4(glm::inverse(spec.localToWorld));
@@ -36,6 +36,8 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
     const float mode = static_cast<float>(alignmentCode(al.mode));
     u.align = glm::vec4(mode, static_cast<float>(al.depth), static_cast<float>(al.band),
                         static_cast<float>(al.band));
+    // The feature field is on the volume's grid (a 1^3 texture for axis alignment).
+    u.featureScale = glm::vec4(glm::vec3(0.5 / volume.spacing), 0.0f);
     return u;
 }
 
@@ -86,7 +88,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
                                   feature.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                   m_sampler);
         op->spec = spec;
-        const shader::OperatorUniforms u = uniformsOf(spec, op->box, i);
+        const shader::OperatorUniforms u = uniformsOf(spec, op->box, i, volume);
         std::memcpy(op->uniforms.mapped, &u, sizeof u);
     }
 }

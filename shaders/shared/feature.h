@@ -64,7 +64,9 @@ CW_FUNC vec3 surfaceNormal(vec3 transformed, vec3 distanceGradient, float beta) 
 }
 
 // gamma of Eq. 10: 2M between the isosurfaces M = 0 and M = 0.5, else 0.
-CW_FUNC float segmentGamma(float m) { return (m > 0.0f && m < 0.5f) ? 2.0f * m : 0.0f; }
+CW_FUNC float segmentGamma(float m) {
+    return (m > 0.0f && m < 0.5f) ? 2.0f * m : 0.0f;
+}
 
 // Eq. 10: the transformed normal turned over as M approaches 0.5 from outside.
 CW_FUNC vec3 segmentNormal(vec3 transformed, float gamma) {
@@ -77,11 +79,25 @@ CW_FUNC vec3 segmentNormal(vec3 transformed, float gamma) {
 // (feature_bake.h) takes these values smoothed by the segment's band, and the
 // shader reads the gradient of that field; the unsmoothed difference below is
 // the definition the tests check the property against.
-CW_FUNC float segmentValue(bool inSegmentOfInterest) { return inSegmentOfInterest ? 1.0f : 0.0f; }
+CW_FUNC float segmentValue(bool inSegmentOfInterest) {
+    return inSegmentOfInterest ? 1.0f : 0.0f;
+}
 
 // Central difference of segment values along one axis (mm spacing).
 CW_FUNC float segmentDifference(bool below, bool above, float spacing) {
     return (segmentValue(above) - segmentValue(below)) / (2.0f * spacing);
+}
+
+// The unit gradient of a baked feature field (DT or M) at a point, from the
+// field's values one voxel below and above it along each axis (the trilinear
+// samples at tc -+ one voxel, clamped to the grid); `halfInvSpacing` is
+// 1 / (2 spacing) in 1/mm. Toward increasing value, i.e. into the feature;
+// zero where the field is flat. Only its direction is used (Eq. 9, 10).
+CW_FUNC vec3 featureGradientOf(vec3 below, vec3 above, vec3 halfInvSpacing) {
+    vec3 g = (above - below) * halfInvSpacing;
+    float len = length(g);
+    if (len < 1e-12f) return vec3(0.0f);
+    return g / len;
 }
 
 CW_NAMESPACE_END

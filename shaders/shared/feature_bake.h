@@ -11,8 +11,10 @@
 // Mask M: the segment indicator smoothed by a separable Gaussian (mask_blur,
 // one axis per pass), then encoded by maskEncode.
 //
-// field_finish turns either field into the RGBA16F texel:
-// xyz = unit gradient by central differences (toward increasing value), w = value.
+// field_finish turns either field into the R16F texel the renderer samples:
+// DT in mm, or M. The field's gradient is not stored: the operator shader takes
+// it by central differences where it needs it (featureGradientOf in feature.h),
+// which keeps the field at 2 bytes per voxel instead of 8.
 #ifndef CUTAWAY_FEATURE_BAKE_H
 #define CUTAWAY_FEATURE_BAKE_H
 
@@ -36,14 +38,14 @@ const int kBlurMaxRadius = 32;
 
 // Push constants of every feature bake pass (64 bytes, std430 layout).
 struct FeatureBakeParams {
-    ivec3 dims;          // voxels
-    int axis;            // edt_envelope, mask_blur: the axis of the lines (0 x, 1 y, 2 z)
-    vec3 spacing;        // mm between voxel centres
-    float threshold;     // edt_lines: normalized value above which a voxel is object
-    vec3 halfInvSpacing; // field_finish: 1 / (2 spacing), 1/mm
-    float sigma;         // mask_blur: Gaussian sigma in voxels along `axis` (0: copy)
-    int radius;          // mask_blur: kernel radius in voxels, <= kBlurMaxRadius
-    int mode;            // field_finish: 0 distance, 1 mask; mask_blur: 1 reads the indicator
+    ivec3 dims;      // voxels
+    int axis;        // edt_envelope, mask_blur: the axis of the lines (0 x, 1 y, 2 z)
+    vec3 spacing;    // mm between voxel centres
+    float threshold; // edt_lines: normalized value above which a voxel is object
+    vec3 unused0;
+    float sigma; // mask_blur: Gaussian sigma in voxels along `axis` (0: copy)
+    int radius;  // mask_blur: kernel radius in voxels, <= kBlurMaxRadius
+    int mode;    // field_finish: 0 distance, 1 mask; mask_blur: 1 reads the indicator
     int pad0;
     int pad1;
 };
@@ -73,19 +75,12 @@ CW_FUNC float maskEncode(float s, bool inside) {
     return inside ? max(s, 0.5f) : min(s, 0.498f);
 }
 
-// Unit vector, or zero where the difference vanishes.
-CW_FUNC vec3 unitOrZero(vec3 g) {
-    float len = length(g);
-    if (len < 1e-12f) return vec3(0.0f);
-    return g / len;
-}
-
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
 static_assert(sizeof(cutaway::shader::FeatureBakeParams) == 64);
 static_assert(offsetof(cutaway::shader::FeatureBakeParams, spacing) == 16);
-static_assert(offsetof(cutaway::shader::FeatureBakeParams, halfInvSpacing) == 32);
+static_assert(offsetof(cutaway::shader::FeatureBakeParams, unused0) == 32);
 static_assert(offsetof(cutaway::shader::FeatureBakeParams, radius) == 48);
 #endif
 

@@ -15,6 +15,7 @@ struct OperatorUniforms {
     vec4 band;         // x: D of Eq. 7 in local units (0: no blending); y: id code, 3 + index
     vec4 align;        // x: CW_ALIGN_* (feature.h); y: tau, z: delta (mm, surface);
                        // w: delta for segment alignment's mask (mm, informational)
+    vec4 featureScale; // xyz: 1 / (2 spacing) of the feature field's grid, 1/mm
 };
 
 // Baking: the push constants of operator_bake.comp.
@@ -31,7 +32,7 @@ struct OperatorBakeParams {
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 4 * 16);
+static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 5 * 16);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, align) == 176);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, mapLo) == 128);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, band) == 160);

@@ -7,7 +7,9 @@
 #include "bake/volume_upload.hpp"
 #include "core/error.hpp"
 #include "gpu_fixture.hpp"
+#include "shared/feature.h"
 
+#include <algorithm>
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 #include <limits>
@@ -76,17 +78,30 @@ gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& objec
     return bake::uploadVolume(ctx, v, {0.0, 255.0});
 }
 
-/// RGBA16F texels back as floats.
-std::vector<glm::vec4> downloadField(const gpu::Context& ctx, const gpu::Image& image) {
-    EXPECT_EQ(image.format, VK_FORMAT_R16G16B16A16_SFLOAT);
+/// R16F texels back as floats.
+std::vector<float> downloadField(const gpu::Context& ctx, const gpu::Image& image) {
+    EXPECT_EQ(image.format, VK_FORMAT_R16_SFLOAT);
     std::vector<std::byte> bytes =
-        gpu::downloadImage(ctx, image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
-    std::vector<glm::vec4> out(bytes.size() / 8);
+        gpu::downloadImage(ctx, image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 2);
+    std::vector<float> out(bytes.size() / 2);
     const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
     for (std::size_t i = 0; i < out.size(); ++i)
-        for (int c = 0; c < 4; ++c)
-            out[i][c] = glm::unpackHalf1x16(halves[4 * i + std::size_t(c)]);
+        out[i] = glm::unpackHalf1x16(halves[i]);
     return out;
+}
+
+/// The direction the operator shader takes from a baked field at a voxel
+/// (featureDirection in glsl/slice_operator.h): featureGradientOf over its
+/// neighbours, clamped to the grid.
+glm::vec3 fieldDirection(const std::vector<float>& field, glm::ivec3 d, glm::dvec3 spacing, int x,
+                         int y, int z) {
+    auto at = [&](int i, int j, int k) {
+        return field[indexOf(d, std::clamp(i, 0, d.x - 1), std::clamp(j, 0, d.y - 1),
+                             std::clamp(k, 0, d.z - 1))];
+    };
+    const glm::vec3 below(at(x - 1, y, z), at(x, y - 1, z), at(x, y, z - 1));
+    const glm::vec3 above(at(x + 1, y, z), at(x, y + 1, z), at(x, y, z + 1));
+    return shader::featureGradientOf(below, above, glm::vec3(0.5 / spacing));
 }
 
 struct DistanceCase {
@@ -114,7 +129,7 @@ TEST_F(DistanceField, MatchesBruteForce) {
         const std::vector<uint8_t> object = randomMask(c.dims, c.background, c.seed);
         const std::vector<double> exact = bruteForceDistance(object, c.dims, spacing);
         gpu::Image values = uploadMask(ctx(), object, c.dims, spacing);
-        const std::vector<glm::vec4> field =
+        const std::vector<float> field =
             downloadField(ctx(), baker.distanceField(values, spacing, 0.5f));
         const std::vector<float> cpu = bake::distanceFieldCpu(object, c.dims, spacing);
         ASSERT_EQ(field.size(), exact.size());
@@ -122,12 +137,12 @@ TEST_F(DistanceField, MatchesBruteForce) {
         for (std::size_t i = 0; i < exact.size(); ++i) {
             // The GPU stores half floats: round to nearest is within 2^-11 relative;
             // allow 2^-10 relative plus 1e-3 mm for the float arithmetic before it.
-            if (std::abs(field[i].w - exact[i]) > exact[i] * 0x1p-10 + 1e-3 && gpuBad++ < 5)
-                ADD_FAILURE() << "voxel " << i << ": GPU " << field[i].w << ", exact " << exact[i];
+            if (std::abs(field[i] - exact[i]) > exact[i] * 0x1p-10 + 1e-3 && gpuBad++ < 5)
+                ADD_FAILURE() << "voxel " << i << ": GPU " << field[i] << ", exact " << exact[i];
             if (std::abs(cpu[i] - exact[i]) > exact[i] * 1e-4 + 1e-6 && cpuBad++ < 5)
                 ADD_FAILURE() << "voxel " << i << ": CPU " << cpu[i] << ", exact " << exact[i];
             if (!object[i]) {
-                EXPECT_EQ(field[i].w, 0.0f);
+                EXPECT_EQ(field[i], 0.0f);
             }
         }
         EXPECT_EQ(gpuBad, 0);
@@ -146,11 +161,11 @@ TEST_F(DistanceField, ThresholdsNormalizedValues) {
                 v.data[v.index(x, y, z)] = std::byte(uint8_t(x * 11));
     bake::FeatureBaker baker(ctx());
     gpu::Image values = bake::uploadVolume(ctx(), v, {0.0, 255.0});
-    const std::vector<glm::vec4> field =
+    const std::vector<float> field =
         downloadField(ctx(), baker.distanceField(values, spacing, 0.5f));
     for (int x = 0; x < dims.x; ++x) {
         const double expected = x * 11 > 127.5 ? (x - 11) * spacing.x : 0.0; // 11 * 11 = 121
-        EXPECT_NEAR(field[v.index(x, 1, 1)].w, expected, expected * 0x1p-10 + 1e-3) << x;
+        EXPECT_NEAR(field[v.index(x, 1, 1)], expected, expected * 0x1p-10 + 1e-3) << x;
     }
 }
 
@@ -159,9 +174,11 @@ TEST_F(DistanceField, WithoutBackgroundIsLargeAndFlat) {
     const std::vector<uint8_t> object(60, 1);
     bake::FeatureBaker baker(ctx());
     gpu::Image values = uploadMask(ctx(), object, dims, glm::dvec3(1.0));
-    for (const glm::vec4& t :
-         downloadField(ctx(), baker.distanceField(values, glm::dvec3(1.0), 0.5f)))
-        EXPECT_EQ(t, glm::vec4(0.0f, 0.0f, 0.0f, 65504.0f));
+    const std::vector<float> field =
+        downloadField(ctx(), baker.distanceField(values, glm::dvec3(1.0), 0.5f));
+    for (float t : field)
+        EXPECT_EQ(t, 65504.0f);
+    EXPECT_EQ(fieldDirection(field, dims, glm::dvec3(1.0), 2, 2, 1), glm::vec3(0.0f));
     for (float d : bake::distanceFieldCpu(object, dims, glm::dvec3(1.0)))
         EXPECT_EQ(d, 65504.0f);
 }
@@ -173,7 +190,7 @@ TEST_F(DistanceField, GradientPointsIntoTheObject) {
     const glm::dvec3 centre = glm::dvec3(dims - 1) * 0.5 * spacing;
     bake::FeatureBaker baker(ctx());
     gpu::Image values = uploadMask(ctx(), object, dims, spacing);
-    const std::vector<glm::vec4> field =
+    const std::vector<float> field =
         downloadField(ctx(), baker.distanceField(values, spacing, 0.5f));
     int checked = 0;
     for (int z = 0; z < dims.z; ++z)
@@ -182,7 +199,7 @@ TEST_F(DistanceField, GradientPointsIntoTheObject) {
                 const std::size_t i = indexOf(dims, x, y, z);
                 const glm::dvec3 toCentre = centre - glm::dvec3(x, y, z) * spacing;
                 if (!object[i] || glm::length(toCentre) < 3.0) continue;
-                const glm::vec3 g(field[i]);
+                const glm::vec3 g = fieldDirection(field, dims, spacing, x, y, z);
                 EXPECT_NEAR(glm::length(g), 1.0f, 2e-3f) << x << " " << y << " " << z;
                 EXPECT_GT(glm::dot(glm::dvec3(g), glm::normalize(toCentre)), 0.5)
                     << x << " " << y << " " << z;
@@ -216,24 +233,24 @@ TEST_F(SegmentMask, MatchesCpuTwin) {
             indicator[i] = uint8_t((indicator[i] != 0) != (flips[i] == 0) ? 1 : 0);
         for (double band : {0.0, 1.0, 3.0, 40.0}) { // 40 mm: kernel radius capped at 32
             SCOPED_TRACE(testing::Message() << "seed " << seed << " band " << band);
-            const std::vector<glm::vec4> field =
+            const std::vector<float> field =
                 downloadField(ctx(), baker.segmentMask(indicator, dims, spacing, band));
             const std::vector<float> cpu = bake::smoothMaskCpu(indicator, dims, spacing, band);
             ASSERT_EQ(field.size(), cpu.size());
             int bad = 0;
             for (std::size_t i = 0; i < cpu.size(); ++i) {
                 // Half floats in [0, 1] are within 2^-12 of the float; 2e-3 covers exp().
-                if (std::abs(field[i].w - cpu[i]) > 2e-3f && bad++ < 5)
-                    ADD_FAILURE() << "voxel " << i << ": GPU " << field[i].w << ", CPU " << cpu[i];
+                if (std::abs(field[i] - cpu[i]) > 2e-3f && bad++ < 5)
+                    ADD_FAILURE() << "voxel " << i << ": GPU " << field[i] << ", CPU " << cpu[i];
                 if (indicator[i]) {
-                    EXPECT_GE(field[i].w, 0.5f);
+                    EXPECT_GE(field[i], 0.5f);
                     EXPECT_GE(cpu[i], 0.5f);
                 } else {
-                    EXPECT_LT(field[i].w, 0.5f);
+                    EXPECT_LT(field[i], 0.5f);
                     EXPECT_LT(cpu[i], 0.5f);
                 }
                 if (band == 0.0) {
-                    EXPECT_EQ(field[i].w, indicator[i] ? 1.0f : 0.0f);
+                    EXPECT_EQ(field[i], indicator[i] ? 1.0f : 0.0f);
                 }
             }
             EXPECT_EQ(bad, 0);
@@ -279,19 +296,19 @@ TEST_F(SegmentMask, GradientPointsIntoTheSegmentOnBothSides) {
     bake::FeatureBaker baker(ctx());
     for (double band : {0.0, 2.0}) {
         SCOPED_TRACE(testing::Message() << "band " << band);
-        const std::vector<glm::vec4> field =
+        const std::vector<float> field =
             downloadField(ctx(), baker.segmentMask(indicator, dims, spacing, band));
         for (int y = 0; y < dims.y; ++y)
             for (int x = 0; x < dims.x; ++x) {
-                const glm::vec4 outside = field[indexOf(dims, x, y, 5)];
-                const glm::vec4 inside = field[indexOf(dims, x, y, 6)];
-                EXPECT_LT(outside.w, 0.5f);
-                EXPECT_GE(inside.w, 0.5f);
-                for (const glm::vec4& t : {outside, inside})
-                    EXPECT_NEAR(glm::distance(glm::vec3(t), glm::vec3(0, 0, 1)), 0.0f, 2e-3f);
+                EXPECT_LT(field[indexOf(dims, x, y, 5)], 0.5f); // outside
+                EXPECT_GE(field[indexOf(dims, x, y, 6)], 0.5f); // inside
+                for (int z : {5, 6}) {
+                    const glm::vec3 g = fieldDirection(field, dims, spacing, x, y, z);
+                    EXPECT_NEAR(glm::distance(g, glm::vec3(0, 0, 1)), 0.0f, 2e-3f) << z;
+                }
                 // Far from the boundary without smoothing the field is flat: no direction.
                 if (band == 0.0) {
-                    EXPECT_EQ(glm::vec3(field[indexOf(dims, x, y, 1)]), glm::vec3(0.0f));
+                    EXPECT_EQ(fieldDirection(field, dims, spacing, x, y, 1), glm::vec3(0.0f));
                 }
             }
     }

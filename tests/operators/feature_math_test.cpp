@@ -101,5 +101,22 @@ TEST(FeatureMath, SegmentAwareGradientsSurviveInterpolationAcrossABoundary) {
     EXPECT_FLOAT_EQ(lerp(ownLeft, ownRight, 0.5f), 0.0f);
 }
 
+TEST(FeatureMath, FieldGradientIsTheUnitDirectionPerMillimetre) {
+    // A linear field f = a . x (x in mm) sampled one voxel either side: the
+    // direction is a's, whatever the spacing; per-voxel differences alone would
+    // tilt it toward the coarse axis.
+    const glm::vec3 a(1.0f, 2.0f, -0.5f);
+    const glm::vec3 spacing(0.5f, 1.0f, 3.0f);
+    const glm::vec3 below = -a * spacing; // f(x - spacing_i e_i) - f(x), with f(x) = 0
+    const glm::vec3 above = a * spacing;
+    const glm::vec3 g = featureGradientOf(below, above, 0.5f / spacing);
+    EXPECT_NEAR(glm::length(g), 1.0f, 1e-6f);
+    EXPECT_NEAR(glm::distance(g, glm::normalize(a)), 0.0f, 1e-6f);
+    const glm::vec3 perVoxel = glm::normalize(above - below);
+    EXPECT_GT(glm::distance(perVoxel, glm::normalize(a)), 0.1f);
+    // A flat field has no direction (the blends of Eq. 9, 10 then change nothing).
+    EXPECT_EQ(featureGradientOf(glm::vec3(4.0f), glm::vec3(4.0f), 0.5f / spacing), glm::vec3(0.0f));
+}
+
 } // namespace
 } // namespace cutaway::test
