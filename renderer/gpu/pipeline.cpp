@@ -173,7 +173,8 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, VkPipelineLayout layou
 
     VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     info.pNext = &rendering;
-    info.stageCount = 2;
+    info.stageCount =
+        parts.fragment != VK_NULL_HANDLE ? 2 : 1; // no fragment shader: depth/stencil only
     info.pStages = stages;
     info.pVertexInputState = &vertexInput;
     info.pInputAssemblyState = &assembly;

@@ -32,10 +32,29 @@ std::vector<Range> brickRanges(const Volume& scan, glm::ivec3 bricks, bake::Valu
     return ranges;
 }
 
+// The summed-area table of occ.flags.
+void fillSums(BrickOccupancy& occ) {
+    const glm::ivec3 n = occ.bricks + 1;
+    occ.sums.assign(std::size_t(n.x) * n.y * n.z, 0);
+    const auto s = [&](int x, int y, int z) -> uint32_t& {
+        return occ.sums[std::size_t(x) + std::size_t(n.x) * (y + std::size_t(n.y) * z)];
+    };
+    for (int z = 1; z < n.z; ++z)
+        for (int y = 1; y < n.y; ++y)
+            for (int x = 1; x < n.x; ++x) {
+                const uint32_t f = occ.flags[std::size_t(x - 1) +
+                                             std::size_t(occ.bricks.x) *
+                                                 (y - 1 + std::size_t(occ.bricks.y) * (z - 1))];
+                s(x, y, z) = f + s(x - 1, y, z) + s(x, y - 1, z) + s(x, y, z - 1) -
+                             s(x - 1, y - 1, z) - s(x - 1, y, z - 1) - s(x, y - 1, z - 1) +
+                             s(x - 1, y - 1, z - 1);
+            }
+}
+
 } // namespace
 
-std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWindow window,
-                               const std::vector<const TransferFunction*>& transfers) {
+BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
+                              const std::vector<const TransferFunction*>& transfers) {
     const glm::ivec3 bricks = (scan.dims + (kBrickVoxels - 1)) / kBrickVoxels;
     const std::vector<Range> ranges = brickRanges(scan, bricks, window);
     // visibleUpTo[i]: how many table entries in [0, i) have opacity, for any function.
@@ -53,7 +72,12 @@ std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWi
     const auto at = [&](int x, int y, int z) {
         return std::size_t(x) + std::size_t(bricks.x) * (y + std::size_t(bricks.y) * z);
     };
-    std::vector<std::uint8_t> occupied(ranges.size(), 0);
+    BrickOccupancy occ;
+    occ.bricks = bricks;
+    occ.box = box;
+    occ.brickMm = double(kBrickVoxels) * scan.spacing;
+    std::vector<uint8_t>& occupied = occ.flags;
+    occupied.assign(ranges.size(), 0);
     const float last = float(kTransferTableSize - 1);
     for (int z = 0; z < bricks.z; ++z)
         for (int y = 0; y < bricks.y; ++y)
@@ -73,32 +97,64 @@ std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWi
                 occupied[at(x, y, z)] = visibleUpTo[end] > visibleUpTo[first];
             }
 
-    // Runs along x, then equal runs of consecutive rows merged along y.
-    struct Run {
-        int x0, x1, y0, y1, z;
+    fillSums(occ);
+    return occ;
+}
+
+BrickOccupancy fullOccupancy(const Box& box) {
+    BrickOccupancy occ;
+    occ.bricks = glm::ivec3(1);
+    occ.box = box;
+    occ.brickMm = box.hi - box.lo;
+    occ.flags = {1};
+    fillSums(occ);
+    return occ;
+}
+
+bool BrickOccupancy::anyIn(glm::dvec3 lo, glm::dvec3 hi) const {
+    if (glm::any(glm::greaterThan(lo, box.hi)) || glm::any(glm::lessThan(hi, box.lo))) return false;
+    const glm::ivec3 last = bricks - 1;
+    const glm::ivec3 a =
+        glm::clamp(glm::ivec3(glm::floor((lo - box.lo) / brickMm)), glm::ivec3(0), last);
+    const glm::ivec3 b =
+        glm::clamp(glm::ivec3(glm::floor((hi - box.lo) / brickMm)), glm::ivec3(0), last) + 1;
+    const glm::ivec3 n = bricks + 1;
+    const auto s = [&](int x, int y, int z) {
+        return int64_t(sums[std::size_t(x) + std::size_t(n.x) * (y + std::size_t(n.y) * z)]);
     };
-    std::vector<Run> open, done;
-    for (int z = 0; z < bricks.z; ++z) {
-        for (int y = 0; y < bricks.y; ++y) {
-            std::vector<Run> next;
-            for (int x = 0; x < bricks.x;) {
-                if (!occupied[at(x, y, z)]) {
+    const int64_t count = s(b.x, b.y, b.z) - s(a.x, b.y, b.z) - s(b.x, a.y, b.z) -
+                          s(b.x, b.y, a.z) + s(a.x, a.y, b.z) + s(a.x, b.y, a.z) +
+                          s(b.x, a.y, a.z) - s(a.x, a.y, a.z);
+    return count > 0;
+}
+
+std::vector<CellRun> mergeCells(glm::ivec3 dims, const std::vector<uint8_t>& flags) {
+    const auto at = [&](int x, int y, int z) {
+        return std::size_t(x) + std::size_t(dims.x) * (y + std::size_t(dims.y) * z);
+    };
+    // Runs along x, then equal runs of consecutive rows merged along y.
+    std::vector<CellRun> open, done;
+    for (int z = 0; z < dims.z; ++z) {
+        for (int y = 0; y < dims.y; ++y) {
+            std::vector<CellRun> next;
+            for (int x = 0; x < dims.x;) {
+                if (!flags[at(x, y, z)]) {
                     ++x;
                     continue;
                 }
                 const int x0 = x;
-                while (x < bricks.x && occupied[at(x, y, z)])
+                while (x < dims.x && flags[at(x, y, z)])
                     ++x;
-                auto same = std::find_if(open.begin(), open.end(), [&](const Run& r) {
-                    return r.x0 == x0 && r.x1 == x && r.y1 == y && r.z == z;
+                auto same = std::find_if(open.begin(), open.end(), [&](const CellRun& r) {
+                    return r.lo.x == x0 && r.hi.x == x && r.hi.y == y;
                 });
                 if (same != open.end()) {
-                    Run grown = *same;
-                    grown.y1 = y + 1;
+                    CellRun grown = *same;
+                    grown.hi.y = y + 1;
                     open.erase(same);
                     next.push_back(grown);
                 } else {
-                    next.push_back({x0, x, y, y + 1, z});
+                    next.push_back({{x0, y, z}, {x, y + 1, z + 1}});
                 }
             }
             done.insert(done.end(), open.begin(), open.end());
@@ -107,14 +163,22 @@ std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWi
         done.insert(done.end(), open.begin(), open.end());
         open.clear();
     }
-    std::vector<Box> boxes;
-    const glm::dvec3 brick = double(kBrickVoxels) * scan.spacing;
-    for (const Run& r : done) {
-        const glm::dvec3 lo = box.lo + glm::dvec3(r.x0, r.y0, r.z) * brick;
-        const glm::dvec3 hi = box.lo + glm::dvec3(r.x1, r.y1, r.z + 1) * brick;
-        boxes.push_back({lo, glm::min(hi, box.hi)});
+    return done;
+}
+
+std::vector<Box> BrickOccupancy::boxes() const {
+    std::vector<Box> result;
+    for (const CellRun& r : mergeCells(bricks, flags)) {
+        const glm::dvec3 lo = box.lo + glm::dvec3(r.lo) * brickMm;
+        const glm::dvec3 hi = box.lo + glm::dvec3(r.hi) * brickMm;
+        result.push_back({lo, glm::min(hi, box.hi)});
     }
-    return boxes;
+    return result;
+}
+
+std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWindow window,
+                               const std::vector<const TransferFunction*>& transfers) {
+    return brickOccupancy(scan, box, window, transfers).boxes();
 }
 
 } // namespace cutaway::render

@@ -12,15 +12,48 @@
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
+#include <cstdint>
 #include <vector>
 
 namespace cutaway::render {
 
 constexpr int kBrickVoxels = 8;
 
-/// World-space boxes that together cover every occupied brick of `scan`
-/// (whose box in the world is `box`), for values normalized over `window`
-/// and classified by any of `transfers`. Boxes do not overlap.
+/// Cells [lo, hi) of a grid.
+struct CellRun {
+    glm::ivec3 lo, hi;
+};
+
+/// Boxes of cells that together cover the cells flagged non-zero in `flags`
+/// (x fastest) without overlapping: runs along x, then equal runs of
+/// consecutive rows merged along y.
+std::vector<CellRun> mergeCells(glm::ivec3 dims, const std::vector<uint8_t>& flags);
+
+/// Which bricks of a scan are occupied, and where they lie in the world.
+struct BrickOccupancy {
+    glm::ivec3 bricks{0};
+    Box box;                    ///< the volume's box in the world
+    glm::dvec3 brickMm{0.0};    ///< a brick's extent in mm
+    std::vector<uint8_t> flags; ///< per brick, x fastest: 1 occupied
+    /// Summed-area table over the bricks, (bricks + 1)^3 entries: anyIn in O(1).
+    std::vector<uint32_t> sums;
+
+    /// Whether some occupied brick meets the world-space box [lo, hi].
+    bool anyIn(glm::dvec3 lo, glm::dvec3 hi) const;
+    /// World-space boxes that together cover every occupied brick (runs along
+    /// x, then equal runs of rows merged along y). Boxes do not overlap.
+    std::vector<Box> boxes() const;
+};
+
+/// The occupancy of `scan` (whose box in the world is `box`), for values
+/// normalized over `window` and classified by any of `transfers`.
+BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
+                              const std::vector<const TransferFunction*>& transfers);
+
+/// Every brick occupied: for a volume whose values are not on the host.
+BrickOccupancy fullOccupancy(const Box& box);
+
+/// brickOccupancy(...).boxes().
 std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWindow window,
                                const std::vector<const TransferFunction*>& transfers);
 

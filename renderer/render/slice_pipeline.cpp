@@ -37,8 +37,10 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
                                         const SliceVariant& variant) {
     const SliceProxy proxy = variant.proxy;
     const bool withOperatorId = variant.withOperatorId;
+    const bool stencilOnly = proxy == SliceProxy::OperatorStencil;
     auto vert = gpu::createShaderModule(ctx, slice_vert_spv, sizeof(slice_vert_spv));
-    auto frag = fragmentShader(ctx, proxy, withOperatorId);
+    gpu::ShaderModuleHandle frag;
+    if (!stencilOnly) frag = fragmentShader(ctx, proxy, withOperatorId);
     const SliceConstants constants(variant);
     gpu::GraphicsPipelineParts parts;
     parts.vertex = vert.get();
@@ -57,7 +59,7 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
     stencil.failOp = VK_STENCIL_OP_KEEP;
     stencil.depthFailOp = VK_STENCIL_OP_KEEP;
     stencil.compareMask = 0xff;
-    if (proxy == SliceProxy::Operator) {
+    if (proxy != SliceProxy::Background) {
         stencil.compareOp = VK_COMPARE_OP_ALWAYS;
         stencil.passOp = VK_STENCIL_OP_REPLACE;
         stencil.writeMask = 0xff;
@@ -81,6 +83,10 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
     blend.alphaBlendOp = VK_BLEND_OP_ADD;
     blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                            VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if (stencilOnly) {
+        blend.blendEnable = VK_FALSE;
+        blend.colorWriteMask = 0;
+    }
     parts.blends = {blend};
     parts.colorFormats = {ctx.formats().color};
     if (withOperatorId) { // same rule for the id target
@@ -88,7 +94,7 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
         parts.colorFormats.push_back(kOperatorIdFormat);
     }
     parts.extraDynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE};
-    parts.fragmentConstants = constants.info();
+    parts.fragmentConstants = stencilOnly ? nullptr : constants.info();
     return gpu::createGraphicsPipeline(ctx, layout, parts);
 }
 

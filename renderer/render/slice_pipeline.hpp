@@ -6,7 +6,9 @@
 // The stencil composites several operators (paper section 5.1): on slice k
 // (reference ref(k), set dynamically) an operator's polygon writes ref(k); the
 // background polygon is drawn only where the stencil is not ref(k), so no
-// region is drawn twice and no slice needs its own clear.
+// region is drawn twice and no slice needs its own clear. An operator's whole
+// box is marked by a stencil-only polygon, and its shader runs only on the
+// parts of the box where something can show (render/operator_regions.hpp).
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 
@@ -15,8 +17,9 @@
 namespace cutaway::render {
 
 enum class SliceProxy {
-    Background, ///< slice.frag; stencil test != ref, no write
-    Operator    ///< slice_operator.frag; stencil always passes, writes ref
+    Background,     ///< slice.frag; stencil test != ref, no write
+    Operator,       ///< slice_operator.frag; stencil always passes, writes ref
+    OperatorStencil ///< no fragment shader, no colour: writes ref over an operator's whole box
 };
 
 /// The operator-id target: RGBA16F, see shaders/glsl/slice_common.h.

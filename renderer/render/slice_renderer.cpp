@@ -187,7 +187,7 @@ void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
 }
 
-const std::vector<Box>& SliceRenderer::occupiedFor(const Scene& scene, const GpuVolume& volume) {
+const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuVolume& volume) {
     std::vector<const TransferFunction*> transfers{&scene.transfer};
     if (volume.labels) {
         for (const LabelTransfer& t : scene.labelTransfers)
@@ -200,11 +200,35 @@ const std::vector<Box>& SliceRenderer::occupiedFor(const Scene& scene, const Gpu
             key.insert(key.end(), {p.value, double(p.alpha)});
     }
     if (key != m_occupiedKey) {
-        m_occupied = volume.scan ? occupiedBoxes(*volume.scan, volume.box, volume.window, transfers)
-                                 : std::vector<Box>{volume.box};
+        m_occupancy = volume.scan
+                          ? brickOccupancy(*volume.scan, volume.box, volume.window, transfers)
+                          : fullOccupancy(volume.box);
+        m_occupied = m_occupancy.boxes();
         m_occupiedKey = std::move(key);
+        ++m_occupancySerial;
     }
-    return m_occupied;
+    return m_occupancy;
+}
+
+const std::vector<operators::LocalBox>&
+SliceRenderer::regionsFor(std::size_t index, const GpuOperator& op, double reachMm) {
+    // What the regions depend on: the occupancy, the map and where it lies.
+    std::vector<double> key{double(m_occupancySerial), reachMm};
+    const auto add = [&](const float* v, std::size_t n) { key.insert(key.end(), v, v + n); };
+    add(&op.spec.params.a.x, sizeof op.spec.params / sizeof(float));
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            key.push_back(op.box.localToWorld[c][r]);
+    for (int a = 0; a < 3; ++a)
+        key.insert(key.end(),
+                   {op.box.local.lo[a], op.box.local.hi[a], double(op.spec.resolution[a])});
+    if (m_regions.size() <= index) m_regions.resize(index + 1);
+    Regions& r = m_regions[index];
+    if (r.key != key) {
+        r.boxes = operatorRegions(op.spec, op.box, m_occupancy, reachMm);
+        r.key = std::move(key);
+    }
+    return r.boxes;
 }
 
 VkPipeline SliceRenderer::pipelineFor(const SliceVariant& variant) {
@@ -233,7 +257,6 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 0, 1, &frameSet,
                             0, nullptr);
     const auto& ops = m_operators->operators();
-    const int volumeProxy = static_cast<int>(ops.size()); // proxies: operators, then the volume's
     if (ops.empty()) { // one draw: nothing to composite, the slices are consecutive
         uint32_t first = UINT32_MAX, last = 0;
         for (std::size_t k = begin; k < end; ++k) {
@@ -248,6 +271,8 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
         vkCmdDraw(cmd, last - first, 1, first, 0);
         return;
     }
+    frame.proxy = SliceProxy::OperatorStencil;
+    const VkPipeline stencil = pipelineFor(frame);
     for (std::size_t k = begin; k < end; ++k) {
         // Stencil references cycle through 1..255; before a value comes back,
         // clear the stencil so an old slice's mark cannot hide the background.
@@ -259,20 +284,33 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
         }
         vkCmdSetStencilReference(cmd, VK_STENCIL_FACE_FRONT_AND_BACK,
                                  static_cast<uint32_t>(k % 255 + 1));
-        // Operators first; the volume's boxes follow, consecutive: one draw.
+        // Operators first (each its stencil box, then its regions: consecutive
+        // polygons of one kind are one draw); the volume's boxes follow.
+        const std::vector<SliceDraw>& draws = slices.slices[k];
         uint32_t first = UINT32_MAX, last = 0;
-        for (const SliceDraw& d : slices.slices[k]) {
-            if (d.proxy >= volumeProxy) {
-                first = std::min(first, d.first);
-                last = std::max(last, d.first + d.count);
+        for (std::size_t i = 0; i < draws.size();) {
+            const ProxyRole role = m_roles[static_cast<std::size_t>(draws[i].proxy)];
+            if (role.op < 0) {
+                first = std::min(first, draws[i].first);
+                last = std::max(last, draws[i].first + draws[i].count);
+                ++i;
                 continue;
             }
+            const uint32_t start = draws[i].first;
+            uint32_t stop = start + draws[i].count;
+            for (++i; i < draws.size(); ++i) {
+                const ProxyRole next = m_roles[static_cast<std::size_t>(draws[i].proxy)];
+                if (next.op != role.op || next.stencil != role.stencil || draws[i].first != stop)
+                    break;
+                stop += draws[i].count;
+            }
+            const auto op = static_cast<std::size_t>(role.op);
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                              operatorPipelines[static_cast<std::size_t>(d.proxy)]);
-            VkDescriptorSet set = ops[static_cast<std::size_t>(d.proxy)]->set.set;
+                              role.stencil ? stencil : operatorPipelines[op]);
+            VkDescriptorSet set = ops[op]->set.set;
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 1, 1,
                                     &set, 0, nullptr);
-            vkCmdDraw(cmd, d.count, 1, d.first, 0);
+            vkCmdDraw(cmd, stop - start, 1, start, 0);
         }
         if (first < last) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, background);
@@ -284,23 +322,45 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
 Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const int width = scene.render.width, height = scene.render.height;
     m_operators->update(scene.operators, volume);
-    // Proxies: each operator's deformed box, then the volume (the background).
-    // The camera frames them all: a lifted flap may leave the volume's box.
-    std::vector<Proxy> proxies;
-    Box bounds = volume.box;
+    Box bounds = volume.box; // the camera frames the operators too: a flap may leave the box
     for (const auto& op : m_operators->operators()) {
-        proxies.push_back(
-            orientedBoxProxy(op->box.localToWorld, op->box.local.lo, op->box.local.hi));
         bounds.lo = glm::min(bounds.lo, op->box.lo());
         bounds.hi = glm::max(bounds.hi, op->box.hi());
     }
-    // The volume's proxy: its occupied bricks (empty-space skipping).
-    for (const Box& box : occupiedFor(scene, volume))
-        proxies.push_back(boxProxy(box));
     const std::optional<Box> meshBounds = m_meshes->prepare(scene, 2.0 * volume.box.radius());
     const CameraMatrices cam =
         computeCamera(scene.camera, bounds, width, height, meshBounds ? &*meshBounds : nullptr);
     const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
+    // Proxies: each operator's deformed box, then the volume (the background).
+    // An operator's box is a stencil-only proxy, its shader runs on its regions.
+    occupancyFor(scene, volume);
+    std::vector<Proxy> proxies;
+    m_roles.clear();
+    // How far along a ray the operator shader samples from a fragment: a slab,
+    // longer by the obliquity of the frame's most oblique ray.
+    const double tanX = cam.perspective ? 1.0 / std::abs(cam.proj[0][0]) : 0.0;
+    const double tanY = cam.perspective ? 1.0 / std::abs(cam.proj[1][1]) : 0.0;
+    const double reachMm = sliceMm * std::sqrt(1.0 + tanX * tanX + tanY * tanY) * 1.01;
+    const auto& ops = m_operators->operators();
+    for (std::size_t i = 0; i < ops.size(); ++i) {
+        const GpuOperator& op = *ops[i];
+        const int index = static_cast<int>(i);
+        proxies.push_back(orientedBoxProxy(op.box.localToWorld, op.box.local.lo, op.box.local.hi));
+        if (!m_operatorSkipping) {
+            m_roles.push_back({index, false});
+            continue;
+        }
+        m_roles.push_back({index, true});
+        for (const operators::LocalBox& r : regionsFor(i, op, reachMm)) {
+            proxies.push_back(orientedBoxProxy(op.box.localToWorld, r.lo, r.hi));
+            m_roles.push_back({index, false});
+        }
+    }
+    // The volume's proxy: its occupied bricks (empty-space skipping).
+    for (const Box& box : m_occupied) {
+        proxies.push_back(boxProxy(box));
+        m_roles.push_back({});
+    }
     checkPlaneCount(bounds, sliceMm, scene.render.sliceSpacing, volume.smallestSpacing());
     const double minDepth = cam.perspective ? cam.nearPlane : -1e30;
     const bool raycast = scene.render.method == RenderMethod::Raycast;

@@ -15,6 +15,8 @@
 #include "render/gpu_operators.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/mesh_pass.hpp"
+#include "render/occupancy.hpp"
+#include "render/operator_regions.hpp"
 #include "render/raycaster.hpp"
 #include "render/saturation_pass.hpp"
 #include "render/slice_pipeline.hpp"
@@ -43,6 +45,10 @@ public:
     Image render(const Scene& scene, const GpuVolume& volume);
 
     const FrameStats& lastStats() const { return m_stats; }
+    /// Whether operator shaders run only where something can show
+    /// (render/operator_regions.hpp; on by default). Off, they run over the
+    /// whole deformed box, as the tests that compare the two need.
+    void setOperatorSkipping(bool on) { m_operatorSkipping = on; }
     /// Feature-field bakes since the last call, one line each (see FeatureFields).
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
 
@@ -52,9 +58,13 @@ private:
     /// Draws slices [begin, end) inside a rendering pass.
     void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet,
                       SliceVariant frame, std::size_t begin, std::size_t end);
-    /// The boxes of the volume's occupied bricks for this scene's transfer
-    /// functions (render/occupancy.hpp), remade when those change.
-    const std::vector<Box>& occupiedFor(const Scene& scene, const GpuVolume& volume);
+    /// The volume's occupied bricks for this scene's transfer functions
+    /// (render/occupancy.hpp), remade when those change.
+    const BrickOccupancy& occupancyFor(const Scene& scene, const GpuVolume& volume);
+    /// Operator `index`'s regions (operatorRegions), remade when it or the
+    /// occupancy changes.
+    const std::vector<operators::LocalBox>& regionsFor(std::size_t index, const GpuOperator& op,
+                                                       double reachMm);
     /// render.method "raycast": the frame by ray casting, over nothing.
     Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                         const gpu::Image& transfer, const SliceVariant& variant);
@@ -75,8 +85,23 @@ private:
     std::unique_ptr<Raycaster> m_raycaster;
     gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
     gpu::Buffer m_rayReadback;
-    std::vector<Box> m_occupied;
+    BrickOccupancy m_occupancy;
+    std::vector<Box> m_occupied; ///< m_occupancy.boxes(): the volume's proxies
     std::vector<double> m_occupiedKey;
+    uint64_t m_occupancySerial = 0; ///< counts remakes of m_occupancy
+    struct Regions {
+        std::vector<double> key;
+        std::vector<operators::LocalBox> boxes;
+    };
+    std::vector<Regions> m_regions; ///< per operator
+    bool m_operatorSkipping = true;
+    /// What each proxy of the frame is: operator `op`'s stencil box or one of
+    /// its regions, or (op < 0) a box of the volume's occupied bricks.
+    struct ProxyRole {
+        int op = -1;
+        bool stencil = false;
+    };
+    std::vector<ProxyRole> m_roles;
     /// Slices between two saturation passes: fewer means earlier termination
     /// and more pauses (each a full-screen pass, ~0.3 ms at 512^2 on lavapipe).
     static constexpr std::size_t kSlicesPerChunk = 16;

@@ -1,0 +1,115 @@
+#include "render/operator_regions.hpp"
+
+#include "shared/operators.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cutaway::render {
+namespace {
+
+// Map texels per region block along each axis: blocks of about a brick.
+constexpr int kBlockTexels = 2;
+
+// One texel of the baked map, as operator_bake.comp computes it.
+struct Texel {
+    glm::vec3 displacement; // pre-image minus the texel's position, local units
+    float w;                // signed distance to the cut: <= 0 empty
+};
+
+std::vector<Texel> mapTexels(const OperatorSpec& spec, const operators::LocalBox& domain) {
+    const glm::ivec3 res = spec.resolution;
+    const glm::vec3 lo(domain.lo), hi(domain.hi);
+    std::vector<Texel> texels(std::size_t(res.x) * res.y * res.z);
+    std::size_t i = 0;
+    for (int z = 0; z < res.z; ++z)
+        for (int y = 0; y < res.y; ++y)
+            for (int x = 0; x < res.x; ++x, ++i) {
+                const glm::vec3 q = glm::mix(lo, hi, (glm::vec3(x, y, z) + 0.5f) / glm::vec3(res));
+                const glm::vec4 b = shader::operatorBackward(q, spec.params);
+                texels[i] = {glm::vec3(b) - q, b.w};
+            }
+    return texels;
+}
+
+// The world's axis-aligned bounds of the local box [lo, hi].
+Box worldBounds(const glm::dmat4& localToWorld, glm::dvec3 lo, glm::dvec3 hi) {
+    Box out{glm::dvec3(1e300), glm::dvec3(-1e300)};
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y,
+                                (c & 4) ? hi.z : lo.z);
+        const glm::dvec3 p(localToWorld * glm::dvec4(corner, 1.0));
+        out.lo = glm::min(out.lo, p);
+        out.hi = glm::max(out.hi, p);
+    }
+    return out;
+}
+
+} // namespace
+
+std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
+                                                 const operators::WorldBox& box,
+                                                 const BrickOccupancy& occupancy, double reachMm) {
+    const glm::ivec3 res = spec.resolution;
+    const glm::dvec3 lo = box.local.lo, hi = box.local.hi;
+    const glm::dvec3 texel = (hi - lo) / glm::dvec3(res);
+    const std::vector<Texel> texels = mapTexels(spec, box.local);
+    const auto texelAt = [&](int x, int y, int z) -> const Texel& {
+        return texels[std::size_t(x) + std::size_t(res.x) * (y + std::size_t(res.y) * z)];
+    };
+    // The reach in local units along each axis (the frame may scale its axes).
+    const glm::dmat3 axes(box.localToWorld);
+    const glm::dvec3 reach(reachMm / glm::length(axes[0]), reachMm / glm::length(axes[1]),
+                           reachMm / glm::length(axes[2]));
+    // Rounding of the half-float map and of the sampler: half a voxel.
+    const double pad =
+        glm::min(occupancy.brickMm.x, glm::min(occupancy.brickMm.y, occupancy.brickMm.z)) /
+        double(kBrickVoxels) * 0.5;
+
+    const glm::ivec3 blocks = (res + (kBlockTexels - 1)) / kBlockTexels;
+    std::vector<uint8_t> active(std::size_t(blocks.x) * blocks.y * blocks.z, 0);
+    std::size_t index = 0;
+    for (int bz = 0; bz < blocks.z; ++bz)
+        for (int by = 0; by < blocks.y; ++by)
+            for (int bx = 0; bx < blocks.x; ++bx, ++index) {
+                const glm::ivec3 b(bx, by, bz);
+                // The block's part of the box, and what the shader samples from it.
+                const glm::dvec3 blockLo = lo + glm::dvec3(b * kBlockTexels) * texel;
+                const glm::dvec3 blockHi =
+                    glm::min(hi, lo + glm::dvec3((b + 1) * kBlockTexels) * texel);
+                const glm::dvec3 spanLo = blockLo - reach, spanHi = blockHi + reach;
+                // p' itself: a feature point, or the volume beyond the map's reach.
+                const Box prime = worldBounds(box.localToWorld, spanLo, spanHi);
+                if (occupancy.anyIn(prime.lo - pad, prime.hi + pad)) {
+                    active[index] = 1;
+                    continue;
+                }
+                // p0: q plus a convex blend of the texels whose centres bracket the span.
+                const glm::ivec3 t0 = glm::clamp(
+                    glm::ivec3(glm::floor((spanLo - lo) / texel - 0.5)), glm::ivec3(0), res - 1);
+                const glm::ivec3 t1 = glm::clamp(glm::ivec3(glm::ceil((spanHi - lo) / texel - 0.5)),
+                                                 glm::ivec3(0), res - 1);
+                glm::vec3 dLo(1e30f), dHi(-1e30f);
+                bool exists = false;
+                for (int z = t0.z; z <= t1.z; ++z)
+                    for (int y = t0.y; y <= t1.y; ++y)
+                        for (int x = t0.x; x <= t1.x; ++x) {
+                            const Texel& t = texelAt(x, y, z);
+                            dLo = glm::min(dLo, t.displacement);
+                            dHi = glm::max(dHi, t.displacement);
+                            exists = exists || t.w > 0.0f;
+                        }
+                if (!exists) continue; // all cut: no pre-image anywhere in the block
+                const Box source = worldBounds(box.localToWorld, spanLo + glm::dvec3(dLo),
+                                               spanHi + glm::dvec3(dHi));
+                active[index] = occupancy.anyIn(source.lo - pad, source.hi + pad) ? 1 : 0;
+            }
+
+    std::vector<operators::LocalBox> regions;
+    for (const CellRun& r : mergeCells(blocks, active))
+        regions.push_back({lo + glm::dvec3(r.lo * kBlockTexels) * texel,
+                           glm::min(hi, lo + glm::dvec3(r.hi * kBlockTexels) * texel)});
+    return regions;
+}
+
+} // namespace cutaway::render

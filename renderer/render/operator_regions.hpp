@@ -1,0 +1,30 @@
+#pragma once
+// Empty-space skipping for operator proxies (docs/performance.md). A point p'
+// of an operator's deformed box shows something only where the volume can be
+// seen at p' (a feature point left in place, Eq. 4) or at its pre-image p0
+// (Eq. 3). Over each cell between the baked map's texel centres, p0 is p' plus
+// a trilinear blend of the eight corner texels' displacements, so it lies in
+// the cell moved by the corners' smallest and largest displacement; and p0
+// exists only if some corner lies outside a cut (w > 0). A cell where neither
+// box meets an occupied brick draws nothing. The other cells, grown by the
+// reach of a slab (the shader also resolves the slab's back and middle), are
+// merged into boxes of the operator's local frame: only these run the operator
+// shader, while a cheap stencil-only pass still marks the whole box so the
+// untouched volume is never drawn inside it.
+#include "operators/operator_geometry.hpp"
+#include "render/occupancy.hpp"
+#include "scene/scene.hpp"
+
+#include <vector>
+
+namespace cutaway::render {
+
+/// Boxes of the operator's local frame, inside `box.local` and not
+/// overlapping, that cover every point of its deformed box where the operator
+/// shader can produce a visible sample, given the volume's `occupancy`;
+/// `reachMm`: how far from a fragment the shader samples (a slab's length).
+std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
+                                                 const operators::WorldBox& box,
+                                                 const BrickOccupancy& occupancy, double reachMm);
+
+} // namespace cutaway::render

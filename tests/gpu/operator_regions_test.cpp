@@ -1,0 +1,201 @@
+// Empty-space skipping for operator proxies (render/operator_regions.hpp):
+// the regions must cover every point of a deformed box whose sample can be
+// visible, so that an image rendered with them equals the image rendered
+// with the operator shader over the whole box.
+#include "bake/gradient_bake.hpp"
+#include "gpu_fixture.hpp"
+#include "job/render_job.hpp"
+#include "operators/operator_geometry.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/occupancy.hpp"
+#include "render/operator_regions.hpp"
+#include "render/slice_renderer.hpp"
+#include "scene/scene.hpp"
+#include "shared/operators.h"
+
+#include <algorithm>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <random>
+
+namespace cutaway::test {
+namespace {
+
+// One operator of each kind over the head phantom (64^3 voxels of 1 mm),
+// placed where each cuts into it.
+const char* const kOperators[] = {
+    R"({ "type": "peeler", "placement": { "translate": [0, 0, 16], "scale": [50, 50, 30] },
+         "params": { "hinge": -10, "thickness": 12, "angle": 130 } })",
+    R"({ "type": "retractor", "placement": { "translate": [0, -10, 14], "scale": [30, 40, 30],
+         "rotate": [20, 0, 0] }, "params": { "opening": 14 } })",
+    R"({ "type": "pliers", "placement": { "translate": [0, 24, 4], "scale": [30, 20, 30] } })",
+    R"({ "type": "dilator", "placement": { "translate": [12, 0, 0], "scale": [24, 24, 24] },
+         "params": { "magnification": 1.5 } })",
+};
+
+Scene sceneWith(const std::string& op, const std::string& alignment, double spacing = 1.0) {
+    nlohmann::json doc = nlohmann::json::parse(R"({"version": 1,
+        "volume": {"phantom": "head", "size": [64, 64, 64]},
+        "labels": {"phantom": true},
+        "transfer": {"points": [{"value": 0, "color": [0, 0, 0], "alpha": 0},
+            {"value": 50, "color": [0.9, 0.7, 0.6], "alpha": 0},
+            {"value": 80, "color": [0.9, 0.7, 0.6], "alpha": 0.05},
+            {"value": 115, "color": [0.9, 0.5, 0.5], "alpha": 0.2},
+            {"value": 200, "color": [1, 1, 0.9], "alpha": 0.9}]},
+        "camera": {"orbit": {"azimuth": 35, "elevation": 40}},
+        "render": {"size": [96, 96], "background": "transparent"}})");
+    nlohmann::json o = nlohmann::json::parse(op);
+    if (!alignment.empty()) o["alignment"] = nlohmann::json::parse(alignment);
+    doc["operators"] = nlohmann::json::array({o});
+    doc["render"]["slice_spacing"] = spacing;
+    return parseScene(doc, "/nonexistent", "test");
+}
+
+// The map's value at local q as the GPU samples it: trilinear between texel
+// centres, clamped to the edge, of the texels operator_bake.comp writes.
+glm::vec4 sampledMap(const OperatorSpec& spec, const operators::LocalBox& domain, glm::dvec3 q) {
+    const glm::ivec3 res = spec.resolution;
+    const glm::dvec3 t = (q - domain.lo) / (domain.hi - domain.lo) * glm::dvec3(res) - 0.5;
+    const glm::ivec3 i0 = glm::ivec3(glm::floor(t));
+    const glm::dvec3 f = t - glm::dvec3(i0);
+    glm::vec4 sum(0.0f);
+    for (int c = 0; c < 8; ++c) {
+        const glm::ivec3 d((c & 1) ? 1 : 0, (c & 2) ? 1 : 0, (c & 4) ? 1 : 0);
+        const glm::ivec3 i = glm::clamp(i0 + d, glm::ivec3(0), res - 1);
+        const glm::vec3 centre = glm::mix(glm::vec3(domain.lo), glm::vec3(domain.hi),
+                                          (glm::vec3(i) + 0.5f) / glm::vec3(res));
+        const glm::vec4 b = shader::operatorBackward(centre, spec.params);
+        const double w =
+            (d.x ? f.x : 1.0 - f.x) * (d.y ? f.y : 1.0 - f.y) * (d.z ? f.z : 1.0 - f.z);
+        sum += float(w) * glm::vec4(glm::vec3(b) - centre, b.w);
+    }
+    return sum;
+}
+
+bool inside(const operators::LocalBox& b, glm::dvec3 q) {
+    return glm::all(glm::greaterThanEqual(q, b.lo)) && glm::all(glm::lessThanEqual(q, b.hi));
+}
+
+} // namespace
+
+TEST(OperatorRegions, CoverEveryPointWhoseSampleCanShow) {
+    const Scene base = sceneWith(kOperators[0], "");
+    const Volume volume = job::loadSceneVolume(base);
+    const render::Box box{-glm::dvec3(volume.dims) * 0.5, glm::dvec3(volume.dims) * 0.5};
+    const render::BrickOccupancy occupancy =
+        render::brickOccupancy(volume, box, job::sceneWindow(base, volume), {&base.transfer});
+    std::mt19937 rng(7);
+    for (const char* op : kOperators) {
+        const OperatorSpec spec = sceneWith(op, "").operators.at(0);
+        SCOPED_TRACE(spec.name);
+        const operators::WorldBox world{spec.localToWorld,
+                                        operators::deformedBounds(spec.params, spec.resolution)};
+        const std::vector<operators::LocalBox> regions =
+            render::operatorRegions(spec, world, occupancy, 1.0);
+        // Inside the box, and no two overlap (they would be shaded twice).
+        double covered = 0.0;
+        for (std::size_t i = 0; i < regions.size(); ++i) {
+            EXPECT_TRUE(glm::all(glm::greaterThanEqual(regions[i].lo, world.local.lo)));
+            EXPECT_TRUE(glm::all(glm::lessThanEqual(regions[i].hi, world.local.hi)));
+            const glm::dvec3 e = regions[i].hi - regions[i].lo;
+            covered += e.x * e.y * e.z;
+            for (std::size_t j = 0; j < i; ++j) {
+                const glm::dvec3 lo = glm::max(regions[i].lo, regions[j].lo);
+                const glm::dvec3 hi = glm::min(regions[i].hi, regions[j].hi);
+                EXPECT_FALSE(glm::all(glm::lessThan(lo + 1e-9, hi))) << i << " overlaps " << j;
+            }
+        }
+        const glm::dvec3 extent = world.local.hi - world.local.lo;
+        if (spec.type == OperatorType::Peeler) { // its flap swings out into the air
+            EXPECT_LT(covered, 0.9 * extent.x * extent.y * extent.z) << "nothing is skipped";
+        }
+        // Random points p' of the box whose p' or sampled pre-image p0 lies in an
+        // occupied brick must be in a region.
+        std::uniform_real_distribution<double> u(0.0, 1.0);
+        int needed = 0;
+        for (int n = 0; n < 20000; ++n) {
+            const glm::dvec3 q = world.local.lo + glm::dvec3(u(rng), u(rng), u(rng)) * extent;
+            const glm::vec4 m = sampledMap(spec, world.local, q);
+            const glm::dvec3 prime(spec.localToWorld * glm::dvec4(q, 1.0));
+            const glm::dvec3 p0(spec.localToWorld * glm::dvec4(q + glm::dvec3(glm::vec3(m)), 1.0));
+            const bool visible =
+                occupancy.anyIn(prime, prime) || (m.w > 0.0f && occupancy.anyIn(p0, p0));
+            if (!visible) continue;
+            ++needed;
+            bool found = false;
+            for (const operators::LocalBox& r : regions)
+                found = found || inside(r, q);
+            ASSERT_TRUE(found) << "q " << q.x << " " << q.y << " " << q.z;
+        }
+        EXPECT_GT(needed, 1000);
+    }
+}
+
+TEST(OperatorRegions, FollowTheOccupancy) {
+    const OperatorSpec spec = sceneWith(kOperators[1], "").operators.at(0);
+    const operators::WorldBox world{spec.localToWorld,
+                                    operators::deformedBounds(spec.params, spec.resolution)};
+    const render::Box box{glm::dvec3(-32.0), glm::dvec3(32.0)};
+    // Everything occupied: the regions fill the whole box.
+    double covered = 0.0;
+    for (const operators::LocalBox& r :
+         render::operatorRegions(spec, world, render::fullOccupancy(box), 1.0)) {
+        const glm::dvec3 e = r.hi - r.lo;
+        covered += e.x * e.y * e.z;
+    }
+    const glm::dvec3 e = world.local.hi - world.local.lo;
+    EXPECT_NEAR(covered, e.x * e.y * e.z, 1e-9 * e.x * e.y * e.z);
+    // Nothing occupied: nothing to shade.
+    render::BrickOccupancy none = render::fullOccupancy(box);
+    none.flags[0] = 0;
+    none.sums.assign(none.sums.size(), 0);
+    EXPECT_TRUE(render::operatorRegions(spec, world, none, 1.0).empty());
+}
+
+class OperatorRegionsRender : public GpuTest {};
+
+TEST_F(OperatorRegionsRender, SkippingChangesNoPixel) {
+    const std::string alignments[] = {
+        "", R"({"mode": "surface", "threshold": 30, "depth": 3, "band": 2})",
+        R"({"mode": "segment", "labels": ["brain"], "band": 2})"};
+    // Long slabs too: the shader resolves a slab's back and middle, up to a
+    // slab beyond the fragment, and the regions must reach that far.
+    for (double spacing : {1.0, 6.0})
+        for (const char* op : kOperators) {
+            for (const std::string& alignment : alignments) {
+                const Scene scene = sceneWith(op, alignment, spacing);
+                SCOPED_TRACE(scene.operators.at(0).name + " " + alignment + " d " +
+                             std::to_string(spacing));
+                const Volume volume = job::loadSceneVolume(scene);
+                auto labels = job::loadSceneLabels(scene, volume);
+                bake::GradientBaker baker(ctx());
+                const render::GpuVolume gv =
+                    render::prepareVolume(ctx(), baker, std::make_shared<Volume>(volume),
+                                          job::sceneWindow(scene, volume), std::nullopt, labels);
+                render::SliceRenderer renderer(ctx());
+                renderer.setOperatorSkipping(false);
+                const Image whole = renderer.render(scene, gv);
+                renderer.setOperatorSkipping(true);
+                const Image skipped = renderer.render(scene, gv);
+                // The same samples, but a fragment's world position is interpolated
+                // over a region's polygon instead of the box's (float rounding,
+                // up to 1e-4), and where two regions' polygons meet in a T-junction
+                // a pixel centre on the seam can be shaded twice or not at all (as
+                // between the volume's brick boxes): a few pixels, one sample
+                // each. A region missing would change whole areas.
+                int seams = 0;
+                float worst = 0.0f;
+                for (std::size_t i = 0; i < whole.rgba.size(); i += 4) {
+                    float e = 0.0f;
+                    for (std::size_t c = 0; c < 4; ++c)
+                        e = std::max(e, std::abs(whole.rgba[i + c] - skipped.rgba[i + c]));
+                    worst = std::max(worst, e);
+                    seams += e > 1e-3f;
+                }
+                EXPECT_LE(seams, 4) << "worst " << worst;
+                EXPECT_LE(worst, 0.02f);
+            }
+        }
+}
+
+} // namespace cutaway::test
