@@ -3,6 +3,7 @@
 #include "render/transfer_table.hpp"
 
 #include <algorithm>
+#include <tuple>
 
 namespace cutaway::render {
 namespace {
@@ -163,7 +164,25 @@ std::vector<CellRun> mergeCells(glm::ivec3 dims, const std::vector<uint8_t>& fla
         done.insert(done.end(), open.begin(), open.end());
         open.clear();
     }
-    return done;
+    // Boxes with the same rectangle in consecutive layers become one: fewer,
+    // larger polygons per slice (thin ones waste a rasterizer's SIMD lanes).
+    std::sort(done.begin(), done.end(), [](const CellRun& a, const CellRun& b) {
+        return std::tie(a.lo.x, a.lo.y, a.hi.x, a.hi.y, a.lo.z) <
+               std::tie(b.lo.x, b.lo.y, b.hi.x, b.hi.y, b.lo.z);
+    });
+    std::vector<CellRun> merged;
+    for (const CellRun& r : done) {
+        if (!merged.empty()) {
+            CellRun& m = merged.back();
+            if (m.lo.x == r.lo.x && m.lo.y == r.lo.y && m.hi.x == r.hi.x && m.hi.y == r.hi.y &&
+                m.hi.z == r.lo.z) {
+                m.hi.z = r.hi.z;
+                continue;
+            }
+        }
+        merged.push_back(r);
+    }
+    return merged;
 }
 
 std::vector<Box> BrickOccupancy::boxes() const {

@@ -47,6 +47,17 @@ Box worldBounds(const glm::dmat4& localToWorld, glm::dvec3 lo, glm::dvec3 hi) {
 
 } // namespace
 
+double coverage(const std::vector<operators::LocalBox>& regions, const operators::LocalBox& box) {
+    const auto volume = [](const operators::LocalBox& b) {
+        const glm::dvec3 e = b.hi - b.lo;
+        return e.x * e.y * e.z;
+    };
+    double covered = 0.0;
+    for (const operators::LocalBox& r : regions)
+        covered += volume(r);
+    return covered / volume(box);
+}
+
 std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
                                                  const operators::WorldBox& box,
                                                  const BrickOccupancy& occupancy, double reachMm) {

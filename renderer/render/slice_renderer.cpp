@@ -350,8 +350,13 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
             m_roles.push_back({index, false});
             continue;
         }
+        const std::vector<operators::LocalBox>& regions = regionsFor(i, op, reachMm);
+        if (coverage(regions, op.box.local) > kWholeBoxCoverage) { // not worth a stencil pass
+            m_roles.push_back({index, false});
+            continue;
+        }
         m_roles.push_back({index, true});
-        for (const operators::LocalBox& r : regionsFor(i, op, reachMm)) {
+        for (const operators::LocalBox& r : regions) {
             proxies.push_back(orientedBoxProxy(op.box.localToWorld, r.lo, r.hi));
             m_roles.push_back({index, false});
         }
@@ -516,10 +521,10 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     });
 
     Image image = readImage(m_ctx, m_readback, width, height);
-    const std::size_t count = image.rgba.size();
+    const std::size_t pixels = image.rgba.size();
     if (withId) { // codes: 0 nothing visible, 2 the untouched volume, 3 + i operator i
         const auto* halves = static_cast<const uint16_t*>(m_operatorIdReadback.mapped);
-        image.operatorIds.resize(count / 4);
+        image.operatorIds.resize(pixels / 4);
         for (std::size_t p = 0; p < image.operatorIds.size(); ++p) {
             const float code = glm::unpackHalf1x16(halves[4 * p]);
             const float covered = glm::unpackHalf1x16(halves[4 * p + 3]);
@@ -529,7 +534,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     // The meshes are opaque and lie behind the volume in front of them.
     if (withMeshes) {
         const Image meshes = readImage(m_ctx, m_meshReadback, width, height);
-        for (std::size_t i = 0; i < count; i += 4) {
+        for (std::size_t i = 0; i < pixels; i += 4) {
             const float t = 1.0f - image.rgba[i + 3];
             for (int c = 0; c < 4; ++c)
                 image.rgba[i + c] += t * meshes.rgba[i + c];
