@@ -128,10 +128,16 @@ void main() {
     float frontValue = textureLod(volumeTex, front.tc, 0.0).r;
     float backValue = frontValue;
     vec3 shadePoint = worldPos; // the slab's middle when pre-integrated, as for the background
+    Resolved middle = front;    // where the slab is shaded
     if (cwPreintegrated) {
         Resolved back = resolve(worldPos - toEye * stepMm);
         if (back.which != CW_CASE_EMPTY) backValue = textureLod(volumeTex, back.tc, 0.0).r;
         shadePoint = worldPos - toEye * (0.5 * stepMm);
+        if (back.which == front.which) { // the middle, halfway: exact where the map is affine
+            middle.tc = 0.5 * (front.tc + back.tc);
+            middle.feature = 0.5 * (front.feature + back.feature);
+            middle.cutW = 0.5 * (front.cutW + back.cutW);
+        }
     }
     vec4 c = classifySlab(frontValue, backValue, obliquity, layer);
     if (c.a <= 0.0) {
@@ -139,11 +145,6 @@ void main() {
         return;
     }
 
-    // Pre-integrated slabs are shaded at their middle; post-classified
-    // samples at the front, already resolved.
-    Resolved middle = cwPreintegrated ? resolve(shadePoint) : front;
-    if (middle.which == CW_CASE_EMPTY || (middle.which == CW_CASE_MASKED) != masked)
-        middle = front; // the middle fell elsewhere: shade at the front
     // One gradient fetch and one feature gradient for both cases below: on
     // SIMD CPUs both sides of a branch run, so a call in each would cost twice.
     vec4 g = featureGradient(textureLod(gradientTex, middle.tc, 0.0), middle.feature, middle.tc,
