@@ -195,9 +195,4 @@ std::vector<Box> BrickOccupancy::boxes() const {
     return result;
 }
 
-std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWindow window,
-                               const std::vector<const TransferFunction*>& transfers) {
-    return brickOccupancy(scan, box, window, transfers).boxes();
-}
-
 } // namespace cutaway::render

@@ -53,8 +53,4 @@ BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWin
 /// Every brick occupied: for a volume whose values are not on the host.
 BrickOccupancy fullOccupancy(const Box& box);
 
-/// brickOccupancy(...).boxes().
-std::vector<Box> occupiedBoxes(const Volume& scan, const Box& box, bake::ValueWindow window,
-                               const std::vector<const TransferFunction*>& transfers);
-
 } // namespace cutaway::render
