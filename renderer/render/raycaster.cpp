@@ -9,6 +9,7 @@ struct RayPush { // matches the push constants of shaders/raycast.comp.glsl
     glm::mat4 clipToWorld;
     glm::vec4 boxLo;
     glm::vec4 boxHi;
+    glm::vec4 bricksPerTexture;
 };
 
 } // namespace
@@ -17,13 +18,13 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
     : m_ctx(ctx), m_linear(linear), m_nearest(nearest) {
     const auto cs = VK_SHADER_STAGE_COMPUTE_BIT;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    m_setLayout =
-        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
-                                   {1, sampled, 1, cs, nullptr},
-                                   {2, sampled, 1, cs, nullptr},
-                                   {3, sampled, 1, cs, nullptr},
-                                   {4, sampled, 1, cs, nullptr},
-                                   {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
+    m_setLayout = gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
+                                             {1, sampled, 1, cs, nullptr},
+                                             {2, sampled, 1, cs, nullptr},
+                                             {3, sampled, 1, cs, nullptr},
+                                             {4, sampled, 1, cs, nullptr},
+                                             {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
+                                             {6, sampled, 1, cs, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
 }
 
@@ -32,7 +33,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target) c
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                         {sampled, 4},
+                                                         {sampled, 5},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
@@ -42,6 +43,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target) c
     gpu::writeImageDescriptor(m_ctx, set.set, 4, sampled, in.classes, ro, m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                               target.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, in.bricks, ro, m_nearest);
     return set;
 }
 
@@ -60,13 +62,13 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant) {
 
 void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
                        const CameraMatrices& camera, const Box& occupied,
-                       const SliceVariant& variant) {
+                       glm::vec3 bricksPerTexture, const SliceVariant& variant) {
     gpu::transition(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     const RayPush push{glm::mat4(glm::inverse(camera.viewProj)),
                        glm::vec4(glm::vec3(occupied.lo), 0.0f),
-                       glm::vec4(glm::vec3(occupied.hi), 0.0f)};
+                       glm::vec4(glm::vec3(occupied.hi), 0.0f), glm::vec4(bricksPerTexture, 0.0f)};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant));
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &set, 0,
                             nullptr);

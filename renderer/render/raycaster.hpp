@@ -24,14 +24,19 @@ public:
         VkBuffer uniforms;
         VkDeviceSize uniformBytes;
         VkImageView values, gradients, transfer, classes;
+        VkImageView bricks; ///< R8_UINT, one texel per brick: 1 occupied (occupancy.hpp)
     };
     gpu::DescriptorSet bind(const Inputs& inputs, const gpu::Image& target) const;
 
     /// Records the pass: `target` (RGBA32F, storage) goes from UNDEFINED to
     /// TRANSFER_SRC_OPTIMAL holding premultiplied colour over nothing.
-    /// `occupied` bounds what the rays march through.
+    /// `occupied` bounds what the rays march through; inside it they step over
+    /// the bricks that Inputs::bricks marks empty.
+    /// `bricksPerTexture` is how many bricks span the texture along each axis
+    /// (the volume's voxels / kBrickVoxels).
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
-                const CameraMatrices& camera, const Box& occupied, const SliceVariant& variant);
+                const CameraMatrices& camera, const Box& occupied, glm::vec3 bricksPerTexture,
+                const SliceVariant& variant);
 
 private:
     VkPipeline pipelineFor(const SliceVariant& variant);

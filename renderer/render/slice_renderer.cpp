@@ -561,12 +561,24 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
         occupied.lo = occupied.lo.x > occupied.hi.x ? b.lo : glm::min(occupied.lo, b.lo);
         occupied.hi = glm::max(occupied.hi, b.hi);
     }
+    if (!m_brickFlags.image || m_brickFlagsSerial != m_occupancySerial) {
+        const glm::ivec3 n = m_occupancy.bricks;
+        m_brickFlags = gpu::createSampledVolume(
+            m_ctx, VK_FORMAT_R8_UINT,
+            {static_cast<uint32_t>(n.x), static_cast<uint32_t>(n.y), static_cast<uint32_t>(n.z)},
+            m_occupancy.flags.data(), m_occupancy.flags.size(),
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        m_brickFlagsSerial = m_occupancySerial;
+    }
+    const glm::vec3 bricksPerTexture((m_occupancy.box.hi - m_occupancy.box.lo) /
+                                     m_occupancy.brickMm);
     const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
                                    volume.values.view.get(), volume.gradients.view.get(),
-                                   transfer.view.get(),      m_classes.view.get()};
+                                   transfer.view.get(),      m_classes.view.get(),
+                                   m_brickFlags.view.get()};
     const gpu::DescriptorSet set = m_raycaster->bind(inputs, m_rayTarget);
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        m_raycaster->record(cmd, set.set, m_rayTarget, cam, occupied, variant);
+        m_raycaster->record(cmd, set.set, m_rayTarget, cam, occupied, bricksPerTexture, variant);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = m_rayTarget.extent;

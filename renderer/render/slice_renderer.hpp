@@ -85,6 +85,8 @@ private:
     std::unique_ptr<Raycaster> m_raycaster;
     gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
     gpu::Buffer m_rayReadback;
+    gpu::Image m_brickFlags; ///< m_occupancy.flags for the rays, only while scenes ray-cast
+    uint64_t m_brickFlagsSerial = 0;
     BrickOccupancy m_occupancy;
     std::vector<Box> m_occupied; ///< m_occupancy.boxes(): the volume's proxies
     std::vector<double> m_occupiedKey;
