@@ -80,9 +80,9 @@ TEST_F(Raycast, MatchesSlicingOrthographicWithLightsAndLabels) {
     EXPECT_GT(expectSameAsSlicing(scene, "orthographic, lights, labels"), 500.0);
 }
 
-// A scan that is air but for a translucent spherical shell and a ball, placed
-// off centre so that a brick grid read mirrored or shifted by a brick skips
-// visible samples. Its sizes are not multiples of the brick (8).
+// A scan that is air but for a spherical shell (value 200) and a ball (100),
+// placed off centre so that a brick grid read mirrored skips visible samples.
+// Its sizes are not multiples of the brick (8).
 Volume shellAndBall() {
     Volume v = Volume::allocate({61, 70, 45}, VoxelType::U8);
     for (int z = 0; z < v.dims.z; ++z)
@@ -95,31 +95,73 @@ Volume shellAndBall() {
                 const double inShell = std::clamp(2.5 - std::abs(shell - 15.5), 0.0, 1.0);
                 const double inBall = std::clamp(6.0 - ball, 0.0, 1.0);
                 v.data[v.index(x, y, z)] =
-                    std::byte(static_cast<uint8_t>(200.0 * std::max(inShell, inBall)));
+                    std::byte(static_cast<uint8_t>(std::max(200.0 * inShell, 100.0 * inBall)));
             }
     return v;
 }
 
-TEST_F(Raycast, StepsOverEmptyBricksWithoutLosingASample) {
+class RaycastBricks : public Raycast {
+protected:
+    void SetUp() override {
+        Raycast::SetUp();
+        writeNrrd(m_file, shellAndBall());
+    }
+    void TearDown() override {
+        std::filesystem::remove(m_file);
+        Raycast::TearDown();
+    }
+    json sceneWith(const char* transfer) const {
+        json scene = headScene();
+        scene["volume"] = {{"file", m_file.string()}};
+        scene.erase("labels");
+        scene["transfer"] = json::parse(transfer);
+        return scene;
+    }
+    const std::filesystem::path m_file =
+        std::filesystem::temp_directory_path() /
+        ("cutaway_raycast_bricks_" + std::to_string(::getpid()) + ".nrrd");
+};
+
+// Shell and ball.
+constexpr const char* kBoth = R"({"points": [{"value": 0, "color": [1, 1, 1], "alpha": 0},
+    {"value": 60, "color": [1, 1, 1], "alpha": 0},
+    {"value": 200, "color": [1, 0.9, 0.8], "alpha": 0.5}]})";
+// The shell only: the ball's bricks are empty.
+constexpr const char* kShellOnly = R"({"points": [{"value": 0, "color": [1, 1, 1], "alpha": 0},
+    {"value": 150, "color": [1, 1, 1], "alpha": 0},
+    {"value": 200, "color": [1, 0.9, 0.8], "alpha": 0.5}]})";
+// The ball only: the shell's bricks are empty.
+constexpr const char* kBallOnly = R"({"points": [{"value": 0, "color": [1, 1, 1], "alpha": 0},
+    {"value": 60, "color": [1, 0.5, 0.5], "alpha": 0},
+    {"value": 100, "color": [1, 0.5, 0.5], "alpha": 0.4},
+    {"value": 140, "color": [1, 0.5, 0.5], "alpha": 0}]})";
+
+TEST_F(RaycastBricks, StepsOverEmptyBricksWithoutLosingASample) {
     // The rays cross the shell's front, step over the empty bricks inside it
     // and around it, and meet its back and the ball; the close camera makes
     // them cross bricks at every angle.
-    const auto file = std::filesystem::temp_directory_path() /
-                      ("cutaway_raycast_bricks_" + std::to_string(::getpid()) + ".nrrd");
-    writeNrrd(file, shellAndBall());
-    json scene = headScene();
-    scene["volume"] = {{"file", file.string()}};
-    scene.erase("labels");
-    scene["transfer"] = json::parse(R"({"points": [{"value": 0, "color": [1, 1, 1], "alpha": 0},
-          {"value": 100, "color": [1, 1, 1], "alpha": 0},
-          {"value": 200, "color": [1, 0.9, 0.8], "alpha": 0.5}]})");
+    json scene = sceneWith(kBoth);
     scene["camera"]["orbit"]["distance"] = 130;
     EXPECT_GT(expectSameAsSlicing(scene, "pre-integrated"), 300.0) << "the shell must show";
     scene["render"]["classification"] = "post";
     scene["camera"]["orbit"]["azimuth"] = 117;
     scene["camera"]["orbit"]["elevation"] = -35;
     expectSameAsSlicing(scene, "post-classified, another view");
-    std::filesystem::remove(file);
+}
+
+TEST_F(RaycastBricks, FollowTheTransferFunctionFromFrameToFrame) {
+    // One renderer, one frame with the shell only, then one with the ball
+    // only: bricks kept from the first frame would step over the ball.
+    json shell = sceneWith(kShellOnly), ball = sceneWith(kBallOnly);
+    shell["render"]["method"] = ball["render"]["method"] = "raycast";
+    const Scene first = parseScene(shell, "/nonexistent", "test");
+    const Scene second = parseScene(ball, "/nonexistent", "test");
+    const Image fresh = job::renderImage(ctx(), second);
+    job::FrameRenderer renderer(ctx());
+    const Image shellImage = renderer.render(first);
+    const Image reused = renderer.render(second);
+    EXPECT_GT(compareImages(shellImage, fresh).maxAbs, 0.1f) << "the two frames must differ";
+    EXPECT_LT(compareImages(reused, fresh).maxAbs, 1e-6f);
 }
 
 TEST_F(Raycast, TheToleranceSeesADifferentStep) {
