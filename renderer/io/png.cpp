@@ -135,10 +135,12 @@ Bytes encodePng(const fs::path& path, const Image& image) {
         std::swap(row, prev);
     }
 
+    // The fastest level: a preview is written per frame while the next one
+    // renders on the same cores. At 512x512, 27 -> 13 ms, files 21 % larger.
     uLongf compressedSize = compressBound(static_cast<uLong>(filtered.size()));
     Bytes compressed(compressedSize);
     const int status = compress2(compressed.data(), &compressedSize, filtered.data(),
-                                 static_cast<uLong>(filtered.size()), Z_DEFAULT_COMPRESSION);
+                                 static_cast<uLong>(filtered.size()), Z_BEST_SPEED);
     if (status != Z_OK) {
         throw RuntimeError("cannot write " + path.string() + ": zlib compress2 failed (" +
                            std::to_string(status) + ")");
