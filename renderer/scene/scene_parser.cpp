@@ -179,8 +179,8 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     }
     // Ray casting integrates the untouched volume only.
     if (scene.render.method == RenderMethod::Raycast) {
-        const char* what = !scene.operators.empty() ? "operators"
-                           : !scene.meshes.empty()  ? "meshes"
+        const char* what = !scene.operators.empty()  ? "operators"
+                           : !scene.meshes.empty()   ? "meshes"
                            : scene.output.operatorId ? "\"output\": {\"operator_id\": true}"
                                                      : nullptr;
         if (what)

@@ -9,7 +9,9 @@
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec4 color;
-layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms u; };
+layout(std140, set = 0, binding = 0) uniform Frame {
+    FrameUniforms u;
+};
 
 vec4 shadeMesh() {
     vec3 toEye = u.eye.w > 0.5 ? normalize(u.eye.xyz - worldPos) : -u.viewDir.xyz;

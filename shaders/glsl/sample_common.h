@@ -5,9 +5,9 @@
 #define CUTAWAY_SAMPLE_COMMON_H
 
 // What a frame fixes, as specialization constants (see SliceVariant in
-// render/slice_pipeline.hpp and render/raycaster.hpp): the compiler drops the paths a frame does not
-// take. On lavapipe a branch on a uniform still costs both sides, so these
-// halve the cost of a fragment.
+// render/slice_pipeline.hpp and render/raycaster.hpp): the compiler drops the paths a frame does
+// not take. On lavapipe a branch on a uniform still costs both sides, so these halve the cost of a
+// fragment.
 layout(constant_id = 0) const bool cwPreintegrated = false;
 layout(constant_id = 1) const bool cwByLabel = false;
 layout(constant_id = 2) const bool cwShading = true;
@@ -19,7 +19,9 @@ layout(constant_id = 4) const int cwAlignment = 0; // operator proxies: CW_ALIGN
 #include "shared/frame.h"
 #include "shared/shading.h"
 
-layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms u; };
+layout(std140, set = 0, binding = 0) uniform Frame {
+    FrameUniforms u;
+};
 layout(set = 0, binding = 1) uniform sampler3D volumeTex;
 layout(set = 0, binding = 2) uniform sampler3D gradientTex;
 // One classification table per layer: layer 0 is /transfer, layer i + 1
@@ -28,7 +30,9 @@ layout(set = 0, binding = 2) uniform sampler3D gradientTex;
 layout(set = 0, binding = 3) uniform sampler2DArray transferTex;
 layout(set = 0, binding = 4) uniform usampler3D classTex;
 
-vec3 toTexture(vec3 world) { return (u.worldToTexture * vec4(world, 1.0)).xyz; }
+vec3 toTexture(vec3 world) {
+    return (u.worldToTexture * vec4(world, 1.0)).xyz;
+}
 
 vec3 toEyeFrom(vec3 world) {
     return u.eye.w > 0.5 ? normalize(u.eye.xyz - world) : -u.viewDir.xyz;
@@ -36,7 +40,9 @@ vec3 toEyeFrom(vec3 world) {
 
 // 1 / cos of the angle between this pixel's ray and the view direction: planes
 // are u.viewDir.w apart along the view, an oblique ray crosses more material.
-float obliquityOf(vec3 toEye) { return 1.0 / max(dot(-toEye, u.viewDir.xyz), 1e-3); }
+float obliquityOf(vec3 toEye) {
+    return 1.0 / max(dot(-toEye, u.viewDir.xyz), 1e-3);
+}
 
 // The classification layer of the voxel nearest to texture coordinate tc.
 float classLayer(vec3 tc) {
