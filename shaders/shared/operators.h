@@ -81,7 +81,8 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 // x = 1, into material outside the box: the collision is not detected.
 //
 // Backward map (continuous version): on the flap, its pre-image; elsewhere
-// the identity, which fills the hole the layer left (so Jacobians there are I).
+// the identity, which fills the hole the layer left (so Jacobians there are I),
+// except at empty points next to the flap, which continue its pre-image.
 // Signed distance w:
 //   flap:     + min(distance to its underside, its sides, its end face). The
 //             skin (e = 0) is not a cut, and neither is the hinge.
@@ -133,8 +134,9 @@ CW_FUNC vec3 peelerForward(vec3 p, OperatorParams o) {
     return vec3(q.x, p.y, q.z);
 }
 
-// Bend coordinates of q if it lies on the flap: (s, e, part) with part 0 on
-// the bend, 1 on the straight part, -1 not on the flap (s, e meaningless).
+// Bend coordinates of q: (s, e, part) with part 0 on the flap's bend, 1 on
+// its straight part; off the flap -2 (bend coordinates) or -1 (straight-part
+// coordinates), and s < 0 where they mean nothing (behind the hinge).
 CW_FUNC vec3 peelerFlapCoords(vec3 q, OperatorParams o) {
     float radius = o.a.z;
     float theta = o.a.w;
@@ -155,7 +157,7 @@ CW_FUNC vec3 peelerFlapCoords(vec3 q, OperatorParams o) {
     }
     bool on =
         s >= 0.0f && s <= 1.0f - o.a.x && e >= 0.0f && e <= o.a.y && abs(q.y) < peelerHalfWidth(o);
-    return vec3(s, e, on ? part : -1.0f);
+    return vec3(s, e, on ? part : part - 2.0f);
 }
 
 // Distance in the xz-plane from q to the flap's end face (a segment).
@@ -206,6 +208,34 @@ CW_FUNC float peelerHoleFaceDistance(vec3 q, OperatorParams o) {
     return min(min(bottom, side), endFace);
 }
 
+// Whether q lies in the hole the flap left.
+CW_FUNC bool peelerInHole(vec3 q, OperatorParams o) {
+    float hw = peelerHalfWidth(o);
+    return q.x > o.a.x && q.x <= 1.0f && abs(q.y) < hw && q.z >= 1.0f - o.a.y && q.z <= 1.0f;
+}
+
+// Distance from q, in the hole or the air, to what the operator leaves alone:
+// the hole's floor, sides, end and hinge planes, or the material outside the
+// hole's open top (the half-space z <= 1 around it).
+CW_FUNC float peelerUntouchedDistance(vec3 q, OperatorParams o) {
+    float h = o.a.x;
+    float hw = peelerHalfWidth(o);
+    bool overHole = q.x > h && q.x < 1.0f && abs(q.y) < hw;
+    float rim = overHole ? min(min(q.x - h, 1.0f - q.x), hw - abs(q.y)) : 0.0f;
+    if (q.z > 1.0f) return length(vec2(q.z - 1.0f, rim));
+    return min(rim, q.z - (1.0f - o.a.y));
+}
+
+// Whether q, off the flap with bend coordinates f and at distance d from it,
+// takes the flap's pre-image continued (see peelerBackward): in the hole or
+// the air, nearer the flap than what the operator leaves alone, and in the
+// air within t of the flap.
+CW_FUNC bool peelerContinues(vec3 q, vec3 f, float d, OperatorParams o) {
+    if (f.x < 0.0f) return false;
+    if (!peelerInHole(q, o) && !(q.z > 1.0f && d < o.a.y)) return false;
+    return d < peelerUntouchedDistance(q, o);
+}
+
 CW_FUNC vec4 peelerBackward(vec3 q, OperatorParams o) {
     float h = o.a.x;
     float t = o.a.y;
@@ -215,20 +245,28 @@ CW_FUNC vec4 peelerBackward(vec3 q, OperatorParams o) {
         float w = min(min(t - f.y, hw - abs(q.y)), peelerEndDistance(q, o));
         return vec4(h + f.x, q.y, 1.0f - f.y, w);
     }
-    bool inHole = q.x > h && q.x <= 1.0f && abs(q.y) < hw && q.z >= 1.0f - t && q.z <= 1.0f;
-    if (inHole) {
-        float walls = min(min(q.x - h, 1.0f - q.x), min(hw - abs(q.y), q.z - (1.0f - t)));
-        return vec4(q, -min(walls, peelerFlapDistance(q, o)));
-    }
-    float w = peelerHoleFaceDistance(q, o);
-    if (q.z > 1.0f) w = min(w, abs(peelerFlapDistance(q, o) - t) - t);
-    return vec4(q, w);
+    // Empty points next to the flap take its pre-image continued past its
+    // faces (bend coordinates out of bounds), the others the identity: a baked
+    // map interpolated across a cut face then blends two nearby pre-images,
+    // not the flap's with one a flap's length away, which would sample the
+    // wrong tissue on the cut face in a band a texel wide. The switch lies
+    // where w is most negative: halfway between the flap and the untouched
+    // material (where w jumps, at the material's top, the map must not), or
+    // halfway across the empty shell in the air.
+    bool inHole = peelerInHole(q, o);
+    float w = inHole ? 0.0f : peelerHoleFaceDistance(q, o);
+    if (!inHole && q.z <= 1.0f) return vec4(q, w); // material
+    float d = peelerFlapDistance(q, o);
+    vec3 p = peelerContinues(q, f, d, o) ? vec3(h + f.x, q.y, 1.0f - f.y) : q;
+    if (inHole) return vec4(p, -min(peelerUntouchedDistance(q, o), d));
+    return vec4(p, min(w, abs(d - t) - t)); // air
 }
 
 CW_FUNC mat3 peelerJacobian(vec3 q, OperatorParams o) {
     vec3 f = peelerFlapCoords(q, o);
-    if (f.z < 0.0f) return mat3(1.0f);
-    if (f.z > 0.5f) { // straight part: a rigid motion, x from tau(theta), z from -n(theta)
+    if (f.z < 0.0f && !peelerContinues(q, f, peelerFlapDistance(q, o), o)) return mat3(1.0f);
+    if (f.z > 0.5f ||
+        f.z == -1.0f) { // straight part: a rigid motion, x from tau(theta), z from -n(theta)
         float c = cos(o.a.w);
         float s = sin(o.a.w);
         return mat3(vec3(c, 0.0f, -s), vec3(0.0f, 1.0f, 0.0f), vec3(s, 0.0f, c));

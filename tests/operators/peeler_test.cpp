@@ -1,6 +1,7 @@
 // Peeler (a bend, Barr's global deformation): round trip, the hole is empty,
-// fixed faces, the analytic Jacobian, and a signed distance with unit gradient
-// at the cut faces, for a typical, an extreme and two shallow folds.
+// fixed faces, the analytic Jacobian, a signed distance with unit gradient at
+// the cut faces and a pre-image continuous across them, for a typical, an
+// extreme and two shallow folds.
 #include "operator_test_util.hpp"
 
 #include <vector>
@@ -46,6 +47,16 @@ int flapPart(glm::vec3 q, const OperatorParams& o) {
     return static_cast<int>(shader::peelerFlapCoords(q, o).z);
 }
 
+// Which expression the backward map takes at q: flapPart, except -3 where it
+// is the identity.
+int mapPiece(glm::vec3 q, const OperatorParams& o) {
+    const glm::vec3 f = shader::peelerFlapCoords(q, o);
+    if (f.z >= 0.0f) return static_cast<int>(f.z);
+    return shader::peelerContinues(q, f, shader::peelerFlapDistance(q, o), o)
+               ? static_cast<int>(f.z)
+               : -3;
+}
+
 // A point of the lifted layer, not within `margin` of its boundary.
 bool liftedWithMargin(glm::vec3 p, const OperatorParams& o, float margin) {
     const float e = 1.0f - p.z;
@@ -89,7 +100,7 @@ TEST(Peeler, BackwardUndoesForward) {
     }
 }
 
-TEST(Peeler, TheHoleIsEmptyAndFilledWithTheIdentity) {
+TEST(Peeler, TheHoleIsEmptyAndMapsNearItself) {
     for (const PeelerCase& c : peelerCases()) {
         SCOPED_TRACE(c.name);
         const OperatorParams& o = c.o;
@@ -100,6 +111,7 @@ TEST(Peeler, TheHoleIsEmptyAndFilledWithTheIdentity) {
         // a fold past a right angle has left the hole entirely empty.
         const float reach = std::sqrt(thicknessOf(o) * (thicknessOf(o) + 2.0f * radiusOf(o)));
         int empty = 0;
+        int continued = 0;
         for (int i = 0; i < 10000; ++i) {
             const glm::vec3 q = rng.inBox(lo, hi);
             const glm::vec4 back = shader::operatorBackward(q, o);
@@ -114,7 +126,13 @@ TEST(Peeler, TheHoleIsEmptyAndFilledWithTheIdentity) {
                 continue;
             }
             ++empty;
-            EXPECT_EQ(glm::vec3(back), q) << "the hole is filled with the identity";
+            // The identity, or next to the flap its pre-image continued: then
+            // about as far outside the layer as q is from the flap.
+            if (glm::vec3(back) == q) continue;
+            ++continued;
+            const float d = shader::peelerFlapDistance(q, o);
+            const float outside = shader::distanceToBox(glm::vec3(back), lo, hi);
+            EXPECT_LE(outside, 1.001f * d + 1e-5f) << q.x << " " << q.y << " " << q.z;
         }
         if (angleOf(o) >= 0.5f * kPi) {
             // On purpose: points of the hole past the bend's reach are all empty.
@@ -124,6 +142,63 @@ TEST(Peeler, TheHoleIsEmptyAndFilledWithTheIdentity) {
             }
         }
         EXPECT_GT(empty, 1000);
+        EXPECT_GT(continued, 10) << "the test should reach the flap's neighbourhood";
+    }
+}
+
+// The baked map is interpolated between texels, so its pre-image must not
+// jump where w changes sign: across the flap's cut faces (underside, sides,
+// end) the empty side continues the flap's pre-image. With the identity there,
+// the cut face showed tissue from a flap's length away in a band a texel wide.
+TEST(Peeler, PreimageIsContinuousAcrossTheFlapsCutFaces) {
+    const float delta = 2e-3f;
+    for (const PeelerCase& c : peelerCases()) {
+        SCOPED_TRACE(c.name);
+        const OperatorParams& o = c.o;
+        const float h = hingeOf(o);
+        const float t = thicknessOf(o);
+        const float hw = halfWidthOf(o);
+        Rng rng(17);
+        float worst = 0.0f;
+        int crossings = 0;
+        // p: a point of the layer just inside a cut face; `out`: the face's
+        // outward normal after the fold.
+        auto cross = [&](glm::vec3 p, glm::vec3 out) {
+            const glm::vec3 inside = shader::operatorForward(p, o);
+            const glm::vec3 beyond = inside + 2.0f * delta * out;
+            const glm::vec4 a = shader::operatorBackward(inside, o);
+            const glm::vec4 b = shader::operatorBackward(beyond, o);
+            ASSERT_GT(a.w, 0.0f);
+            if (b.w > 0.0f || flapPart(beyond, o) >= 0) return; // material or flap beyond
+            // A flap barely lifted leaves a hole thinner than the step: beyond
+            // lies nearer the hole's floor or walls, where the identity holds.
+            // Likewise where the flap lies on the untouched material.
+            if (shader::peelerUntouchedDistance(beyond, o) < 4.0f * delta) return;
+            const float jump = maxAbs(glm::vec3(b) - glm::vec3(a));
+            worst = std::max(worst, jump);
+            ++crossings;
+            EXPECT_LE(jump, 2.0f * delta * 1.01f + 1e-5f)
+                << "q " << beyond.x << " " << beyond.y << " " << beyond.z;
+        };
+        for (int i = 0; i < 3000; ++i) {
+            const float x = h + rng.uniform(0.1f, 0.9f) * (1.0f - h);
+            const float y = rng.uniform(-0.9f, 0.9f) * hw;
+            const float z = 1.0f - rng.uniform(0.1f, 0.9f) * t;
+            // Underside: across the layer, from its middle outward.
+            const glm::vec3 under(x, y, 1.0f - t + delta);
+            cross(under,
+                  glm::normalize(shader::operatorForward(under, o) -
+                                 shader::operatorForward(glm::vec3(x, y, 1.0f - 0.5f * t), o)));
+            // Sides: the bend leaves y alone.
+            const float side = std::copysign(hw - delta, y);
+            cross(glm::vec3(x, side, z), glm::vec3(0.0f, std::copysign(1.0f, y), 0.0f));
+            // End, where the flap ends on its straight part: along tau(theta).
+            if (shader::peelerFlapEnd(o).y > 0.0f) {
+                cross(glm::vec3(1.0f - delta, y, z), shader::peelerTangent(angleOf(o)));
+            }
+        }
+        EXPECT_GT(crossings, 1500);
+        recordWorst(c.name, worst);
     }
 }
 
@@ -170,12 +245,16 @@ TEST(Peeler, JacobianMatchesFiniteDifferences) {
                 i % 2 ? shader::operatorForward(samplePoint(rng, o, 1), o)
                       : rng.inBox(glm::vec3(-1.5f, -1.0f, -1.0f), glm::vec3(1.5f, 1.0f, top));
             const int part = flapPart(q, o);
-            bool straddles = false; // the map is only C0 across the flap's outline,
-            for (int axis = 0; axis < 3 && !straddles; ++axis) // the hinge and phi = theta
+            const int piece = mapPiece(q, o);
+            // The map is only C0 across the flap's outline, the hinge and
+            // phi = theta, and jumps where the continued pre-image gives way
+            // to the identity.
+            bool straddles = false;
+            for (int axis = 0; axis < 3 && !straddles; ++axis)
                 for (float side : {-2.0f * h, 2.0f * h}) {
                     glm::vec3 step(0.0f);
                     step[axis] = side;
-                    straddles = straddles || flapPart(q + step, o) != part;
+                    straddles = straddles || mapPiece(q + step, o) != piece;
                 }
             if (straddles) continue;
             onFlap += part >= 0 ? 1 : 0;
