@@ -114,32 +114,82 @@ vec4 featureGradient(vec4 g, float f, vec3 tc, bool moved) {
     return vec4(segmentNormal(toward, gamma), mix(g.w, 1.0, clamp(2.0 * m, 0.0, 1.0)));
 }
 
+// The part of a slab that the cut leaves, where one end lies in the material
+// (w = wIn > 0) and the other in the cut (wOut <= 0): w is linear across a
+// slab, so the material ends where w crosses 0. Clipping the slab instead of
+// keeping or dropping it whole stops a cut face from showing the slices as
+// contour lines (pre-integrated only: post-classified slices have no back).
+float uncutFraction(float wIn, float wOut) {
+    return clamp(wIn / max(wIn - wOut, 1e-6), 0.0, 1.0);
+}
+
+// The antiderivative of clamp(w / d, 0, 1).
+float rampIntegral(float w, float d) {
+    float c = clamp(w, 0.0, d);
+    return c * c / (2.0 * d) + max(w - d, 0.0);
+}
+
+// The mean of clamp(w / d, 0, 1) over a slab where w runs linearly from a to
+// b: Eq. 7's weight for the whole slab, not at one point of it. A band of a
+// slice or two would otherwise show the slices as steps of shading.
+float bandMean(float a, float b, float d) {
+    if (abs(b - a) < 1e-4 * d) return clamp(0.5 * (a + b) / d, 0.0, 1.0);
+    return (rampIntegral(b, d) - rampIntegral(a, d)) / (b - a);
+}
+
 void main() {
     vec3 toEye = toEyeFrom(worldPos);
     float obliquity = obliquityOf(toEye);
     float stepMm = u.viewDir.w * obliquity;
     Resolved front = resolve(worldPos);
-    if (front.which == CW_CASE_EMPTY) { // a cut, an opening, the feature's place, or nothing
+    bool frontCut = front.which == CW_CASE_EMPTY && front.cutW <= 0.0;
+    if (front.which == CW_CASE_EMPTY && !(cwPreintegrated && frontCut)) {
+        emit(vec4(0.0), 0.0); // an opening, the feature's place, or nothing
+        return;
+    }
+    Resolved middle = front; // where the slab is shaded
+    float frontValue = 0.0, backValue = 0.0;
+    float kept = 1.0;    // the fraction of the slab the cut leaves
+    float shadeAt = 0.0; // where along the slab (0 front, 1 back) it is shaded
+    float wNear = front.cutW, wFar = front.cutW; // w at the ends of the kept part
+    if (front.which != CW_CASE_EMPTY)
+        frontValue = backValue = textureLod(volumeTex, front.tc, 0.0).r;
+    if (cwPreintegrated) {
+        Resolved back = resolve(worldPos - toEye * stepMm);
+        bool backCut = back.which == CW_CASE_EMPTY && back.cutW <= 0.0;
+        shadeAt = 0.5;
+        if (frontCut) { // the slab enters the material through the cut face
+            if (back.which == CW_CASE_EMPTY) {
+                emit(vec4(0.0), 0.0);
+                return;
+            }
+            kept = uncutFraction(back.cutW, front.cutW);
+            middle = back;
+            wNear = 0.0;
+            wFar = back.cutW;
+            frontValue = backValue = textureLod(volumeTex, back.tc, 0.0).r;
+            shadeAt = 1.0 - 0.5 * kept;
+        } else if (backCut) { // it leaves the material through the cut face
+            kept = uncutFraction(front.cutW, back.cutW);
+            wFar = 0.0;
+            shadeAt = 0.5 * kept;
+        } else if (back.which != CW_CASE_EMPTY) {
+            backValue = textureLod(volumeTex, back.tc, 0.0).r;
+            if (back.which == front.which) { // the middle, halfway: exact where the map is affine
+                middle.tc = 0.5 * (front.tc + back.tc);
+                middle.feature = 0.5 * (front.feature + back.feature);
+                wFar = back.cutW;
+            }
+        }
+    }
+    if (kept <= 0.0) {
         emit(vec4(0.0), 0.0);
         return;
     }
-    bool masked = front.which == CW_CASE_MASKED;
-    float layer = classLayer(front.tc);
-    float frontValue = textureLod(volumeTex, front.tc, 0.0).r;
-    float backValue = frontValue;
-    vec3 shadePoint = worldPos; // the slab's middle when pre-integrated, as for the background
-    Resolved middle = front;    // where the slab is shaded
-    if (cwPreintegrated) {
-        Resolved back = resolve(worldPos - toEye * stepMm);
-        if (back.which != CW_CASE_EMPTY) backValue = textureLod(volumeTex, back.tc, 0.0).r;
-        shadePoint = worldPos - toEye * (0.5 * stepMm);
-        if (back.which == front.which) { // the middle, halfway: exact where the map is affine
-            middle.tc = 0.5 * (front.tc + back.tc);
-            middle.feature = 0.5 * (front.feature + back.feature);
-            middle.cutW = 0.5 * (front.cutW + back.cutW);
-        }
-    }
-    vec4 c = classifySlab(frontValue, backValue, obliquity, layer);
+    bool masked = middle.which == CW_CASE_MASKED;
+    float layer = classLayer(middle.tc);
+    vec3 shadePoint = worldPos - toEye * (shadeAt * stepMm);
+    vec4 c = classifySlab(frontValue, backValue, obliquity * kept, layer);
     if (c.a <= 0.0) {
         emit(vec4(0.0), 0.0);
         return;
@@ -174,7 +224,7 @@ void main() {
     mat3 aInvT = transpose(mat3(op.worldToLocal));
     vec3 carried = aInvT * (transpose(jacobian) * (transpose(a) * g.xyz)); // Eq. 5
     vec3 cut = aInvT * cutGradient; // points into the material
-    float omega = op.band.x > 0.0 ? 1.0 - clamp(middle.cutW / op.band.x, 0.0, 1.0) : 0.0;
+    float omega = op.band.x > 0.0 ? 1.0 - bandMean(wNear, wFar, op.band.x) : 0.0;
     vec4 gradient = vec4(dot(carried, carried) > 1e-12 ? normalize(carried) : vec3(0.0), g.w);
     if (omega > 0.0 && dot(cut, cut) > 1e-12) { // Eq. 7
         vec3 blended = mix(gradient.xyz, normalize(cut), omega);
