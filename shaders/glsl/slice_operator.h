@@ -73,6 +73,8 @@ struct Resolved {
     vec3 tc;       // texture coordinate of p (transformed or masked)
     float cutW;    // the map's signed cut distance at p'
     float feature; // the feature field at tc (alignment other than axis)
+    float m0;      // the mask M at p0 and at p' (0 with axis alignment)
+    float mPrime;
 };
 
 // Eq. 3 and 4 for the point p' = world.
@@ -91,6 +93,8 @@ Resolved resolve(vec3 world) {
     r.tc = masked ? tcPrime : tc0;
     r.feature = masked ? fPrime : f0;
     r.cutW = p0.w;
+    r.m0 = m0;
+    r.mPrime = mPrime;
     return r;
 }
 
@@ -114,13 +118,25 @@ vec4 featureGradient(vec4 g, float f, vec3 tc, bool moved) {
     return vec4(segmentNormal(toward, gamma), mix(g.w, 1.0, clamp(2.0 * m, 0.0, 1.0)));
 }
 
-// The part of a slab that the cut leaves, where one end lies in the material
-// (w = wIn > 0) and the other in the cut (wOut <= 0): w is linear across a
-// slab, so the material ends where w crosses 0. Clipping the slab instead of
-// keeping or dropping it whole stops a cut face from showing the slices as
-// contour lines (pre-integrated only: post-classified slices have no back).
-float uncutFraction(float wIn, float wOut) {
-    return clamp(wIn / max(wIn - wOut, 1e-6), 0.0, 1.0);
+// For a slab with one end `v` kept and the other `e` empty: the quantity
+// whose sign change emptied e, at v (> 0) and at e (<= 0 when it explains e):
+// w for a cut, 0.5 - M at p0 where the feature stays behind, M at p' - 0.5
+// where the feature left in place ends.
+vec2 presence(Resolved v, Resolved e) {
+    if (v.which == CW_CASE_MASKED) return vec2(v.mPrime - 0.5, e.mPrime - 0.5);
+    if (e.cutW <= 0.0) return vec2(v.cutW, e.cutW);
+    return vec2(0.5 - v.m0, 0.5 - e.m0);
+}
+
+// The part of such a slab that is kept: the quantity is linear across a slab,
+// so the material ends where it crosses 0. Clipping the slab instead of
+// keeping or dropping it whole stops a cut face (or the face the feature left)
+// from showing the slices as contour lines. `otherwise` where the quantity
+// does not explain the empty end (outside the volume). Pre-integrated only:
+// post-classified slices have no back.
+float keptFraction(vec2 q, float otherwise) {
+    if (q.y > 0.0) return otherwise;
+    return clamp(q.x / max(q.x - q.y, 1e-6), 0.0, 1.0);
 }
 
 // The antiderivative of clamp(w / d, 0, 1).
@@ -142,9 +158,9 @@ void main() {
     float obliquity = obliquityOf(toEye);
     float stepMm = u.viewDir.w * obliquity;
     Resolved front = resolve(worldPos);
-    bool frontCut = front.which == CW_CASE_EMPTY && front.cutW <= 0.0;
-    if (front.which == CW_CASE_EMPTY && !(cwPreintegrated && frontCut)) {
-        emit(vec4(0.0), 0.0); // an opening, the feature's place, or nothing
+    bool frontEmpty = front.which == CW_CASE_EMPTY;
+    if (frontEmpty && !cwPreintegrated) {
+        emit(vec4(0.0), 0.0); // a cut, an opening, the feature's place, or nothing
         return;
     }
     Resolved middle = front; // where the slab is shaded
@@ -152,28 +168,29 @@ void main() {
     float kept = 1.0;    // the fraction of the slab the cut leaves
     float shadeAt = 0.0; // where along the slab (0 front, 1 back) it is shaded
     float wNear = front.cutW, wFar = front.cutW; // w at the ends of the kept part
-    if (front.which != CW_CASE_EMPTY)
-        frontValue = backValue = textureLod(volumeTex, front.tc, 0.0).r;
+    if (!frontEmpty) frontValue = backValue = textureLod(volumeTex, front.tc, 0.0).r;
     if (cwPreintegrated) {
         Resolved back = resolve(worldPos - toEye * stepMm);
-        bool backCut = back.which == CW_CASE_EMPTY && back.cutW <= 0.0;
+        bool backEmpty = back.which == CW_CASE_EMPTY;
         shadeAt = 0.5;
-        if (frontCut) { // the slab enters the material through the cut face
-            if (back.which == CW_CASE_EMPTY) {
+        if (frontEmpty) { // the slab enters the material through a face
+            if (backEmpty) {
                 emit(vec4(0.0), 0.0);
                 return;
             }
-            kept = uncutFraction(back.cutW, front.cutW);
+            kept = keptFraction(presence(back, front), 0.0);
             middle = back;
-            wNear = 0.0;
+            bool cut = back.which == CW_CASE_TRANSFORMED && front.cutW <= 0.0;
+            wNear = cut ? 0.0 : back.cutW;
             wFar = back.cutW;
             frontValue = backValue = textureLod(volumeTex, back.tc, 0.0).r;
             shadeAt = 1.0 - 0.5 * kept;
-        } else if (backCut) { // it leaves the material through the cut face
-            kept = uncutFraction(front.cutW, back.cutW);
-            wFar = 0.0;
+        } else if (backEmpty) { // it leaves the material through a face
+            kept = keptFraction(presence(front, back), 1.0);
+            bool cut = front.which == CW_CASE_TRANSFORMED && back.cutW <= 0.0;
+            wFar = cut ? 0.0 : front.cutW;
             shadeAt = 0.5 * kept;
-        } else if (back.which != CW_CASE_EMPTY) {
+        } else {
             backValue = textureLod(volumeTex, back.tc, 0.0).r;
             if (back.which == front.which) { // the middle, halfway: exact where the map is affine
                 middle.tc = 0.5 * (front.tc + back.tc);

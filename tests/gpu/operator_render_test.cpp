@@ -269,15 +269,15 @@ TEST_F(GpuTest, OperatorIdChannelNamesTheFirstVisibleSamplesOperator) {
 
 namespace cutaway::test {
 
-// A cut face seen obliquely crosses the slabs: kept or dropped whole, they
-// show on it as contour lines one slice apart, which no finer map removes.
-// Clipped where w changes sign, with Eq. 7's weight averaged over each slab,
-// the face converges as the slices get finer. Measured on lavapipe over the
-// peeler's footprint (mean |spacing 1 - spacing 0.25| summed over RGB, over
-// the mean change the peeler makes): 0.18 clipped, 0.29 kept or dropped whole.
-TEST_F(GpuTest, CutFacesConvergeAsTheSlicesGetFiner) {
-    // A homogeneous, half-transparent block (40 mm, no gradient inside): the
-    // flap's underside and the hole's floor are the only features.
+// A face seen obliquely crosses the slabs: kept or dropped whole, they show
+// on it as contour lines one slice apart, which no finer map removes. Clipped
+// where the quantity that empties them changes sign (w at a cut, M where the
+// feature stays behind), with Eq. 7's weight averaged over each slab, the
+// face converges as the slices get finer. The measure, over the peeler's
+// footprint: mean |spacing 1 - spacing 0.25| over the mean change the peeler
+// makes, both summed over RGB. On a homogeneous, half-transparent block (40
+// mm, no gradient inside), so the flap's faces and the hole are all there is.
+double sliceConvergence(const gpu::Context& ctx, const std::string& alignment) {
     Volume block = Volume::allocate(glm::ivec3(48), VoxelType::U8);
     for (int z = 4; z < 44; ++z)
         for (int y = 4; y < 44; ++y)
@@ -285,19 +285,20 @@ TEST_F(GpuTest, CutFacesConvergeAsTheSlicesGetFiner) {
                 block.data[block.index(x, y, z)] = std::byte{150};
     Scene peeled = parsedWith(R"([{ "type": "peeler",
         "placement": { "translate": [0, 0, 14], "scale": [22, 18, 10] },
-        "params": { "hinge": -8, "thickness": 7, "radius": 3, "angle": 130, "width": 24 } }])",
+        "params": { "hinge": -8, "thickness": 7, "radius": 3, "angle": 130, "width": 24 },
+        "alignment": )" + alignment +
+                                  "}]",
                               128);
     peeled.camera.eye = glm::dvec3(-150.0, -250.0, 300.0);
     peeled.camera.target = glm::dvec3(4.0, 0.0, 16.0);
     peeled.camera.orthoHeight = 32.0;
     Scene untouched = peeled;
     untouched.operators.clear();
-    const Image solid = renderVolume(ctx(), untouched, block);
+    const Image solid = renderVolume(ctx, untouched, block);
     peeled.render.sliceSpacing = 1.0;
-    const Image coarse = renderVolume(ctx(), peeled, block);
+    const Image coarse = renderVolume(ctx, peeled, block);
     peeled.render.sliceSpacing = 0.25;
-    const Image fine = renderVolume(ctx(), peeled, block);
-    // Over the peeler's footprint (where it changes the image) only.
+    const Image fine = renderVolume(ctx, peeled, block);
     double error = 0.0, effect = 0.0;
     int footprint = 0;
     for (std::size_t i = 0; i < fine.rgba.size(); i += 4) {
@@ -311,9 +312,21 @@ TEST_F(GpuTest, CutFacesConvergeAsTheSlicesGetFiner) {
         effect += change;
         error += e;
     }
-    ASSERT_GT(footprint, 1000) << "the flap should be in view";
-    EXPECT_LT(error / effect, 0.23) << "error " << error / footprint << " effect "
-                                    << effect / footprint << " over " << footprint << " pixels";
+    EXPECT_GT(footprint, 1000) << "the flap should be in view";
+    return footprint > 0 ? error / effect : 1.0;
+}
+
+// Measured on lavapipe: 0.18 clipped, 0.29 with slabs kept or dropped whole.
+TEST_F(GpuTest, CutFacesConvergeAsTheSlicesGetFiner) {
+    EXPECT_LT(sliceConvergence(ctx(), R"({ "mode": "axis" })"), 0.23);
+}
+
+// The flap takes only the top 3 mm, the rest stays in place: the flap's
+// underside and the hole's floor are where M crosses 0.5, over a ramp 1 mm
+// wide. Measured on lavapipe: 0.39 clipped, 0.48 kept or dropped whole.
+TEST_F(GpuTest, FacesTheFeatureLeavesConvergeAsTheSlicesGetFiner) {
+    const char* surface = R"({ "mode": "surface", "threshold": 100, "depth": 3, "band": 0.5 })";
+    EXPECT_LT(sliceConvergence(ctx(), surface), 0.43);
 }
 
 } // namespace cutaway::test
