@@ -4,15 +4,15 @@
 // along params.axis: each voxel is read once into a ring of the last
 // 2 radius + 1 values, the taps are summed from there in the order of the
 // CPU twin. mode 1 reads the indicator texture (the first pass), mode 0 the
-// previous pass's r32f image. The workgroup computes the kernel once into
-// shared memory. See shared/feature_bake.h.
+// previous pass's result, in place in the R16F field. The workgroup computes
+// the kernel once into shared memory. See shared/feature_bake.h.
 #extension GL_GOOGLE_include_directive : require
 #include "shared/feature_bake.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 0) uniform sampler3D sourceTex;
-layout(set = 0, binding = 1, r32f) uniform readonly image3D srcImage;
-layout(set = 0, binding = 2, r32f) uniform writeonly image3D dstImage;
+layout(set = 0, binding = 1, r16f) uniform readonly image3D srcImage;
+layout(set = 0, binding = 2, r16f) uniform writeonly image3D dstImage;
 layout(push_constant) uniform Push { FeatureBakeParams params; };
 
 const int kRing = 128; // a power of two > 2 kBlurMaxRadius + 1

@@ -87,8 +87,6 @@ void storageBarrier(VkCommandBuffer cmd) {
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
-/// Records the passes in order in one submission: the scratch images and `out`
-/// go to GENERAL first, `out` ends SHADER_READ_ONLY_OPTIMAL. Blocks until done.
 // What the GPU segment mask and its CPU twin both require of their inputs.
 void checkSegmentInputs(const std::vector<uint8_t>& indicator, glm::ivec3 dims, glm::dvec3 spacing,
                         double bandMm) {
@@ -105,19 +103,15 @@ glm::uvec3 finishGroups(glm::ivec3 dims) {
     return {groups(dims.x, 8), groups(dims.y, 8), uint32_t(dims.z)};
 }
 
-void runPasses(const gpu::Context& ctx, VkPipelineLayout layout,
-               const std::vector<const gpu::Image*>& scratch, const gpu::Image& out,
+/// Records the passes in order in one submission: `out` goes to GENERAL
+/// first and ends SHADER_READ_ONLY_OPTIMAL. Blocks until done.
+void runPasses(const gpu::Context& ctx, VkPipelineLayout layout, const gpu::Image& out,
                const std::vector<Pass>& passes) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        for (const gpu::Image* image : scratch)
-            gpu::transition(
-                cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         gpu::transition(cmd, out, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                         VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+                        VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
         for (std::size_t i = 0; i < passes.size(); ++i) {
             const Pass& pass = passes[i];
             if (i > 0) storageBarrier(cmd);
@@ -240,19 +234,11 @@ gpu::DescriptorSet FeatureBaker::makeSet(const gpu::Image& texture, const gpu::I
 
 namespace {
 
-// The r32f image every pass works in, in place (each reads a whole line, or
-// the part of it ahead, before writing it: a second image would add 4 bytes
-// per voxel to the peak memory), and the R16F result.
-struct Images {
-    gpu::Image scratch, out;
-};
-
-Images makeImages(const gpu::Context& ctx, VkExtent3D e) {
-    Images images;
-    images.scratch = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R32_SFLOAT, e,
-                                      VK_IMAGE_USAGE_STORAGE_BIT);
-    images.out = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, kFeatureFieldFormat, e, kFieldUsage);
-    return images;
+// The R16F field every pass works in, in place (each reads a whole line, or
+// the part of it ahead, before writing it): a 4-byte scratch image would add
+// 4 bytes per voxel to the peak memory.
+gpu::Image makeField(const gpu::Context& ctx, VkExtent3D e) {
+    return gpu::createImage(ctx, VK_IMAGE_TYPE_3D, kFeatureFieldFormat, e, kFieldUsage);
 }
 
 } // namespace
@@ -268,23 +254,19 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
                          " voxels; the distance transform handles at most " +
                          std::to_string(shader::kEdtMaxLine) + " voxels per side");
 
-    Images images = makeImages(m_ctx, e);
-    gpu::Image &a = images.scratch, &out = images.out;
-    gpu::DescriptorSet set = makeSet(values, a, a, out); // -> a, a -> a, a -> out
+    gpu::Image out = makeField(m_ctx, e);
+    gpu::DescriptorSet set = makeSet(values, out, out, out); // -> out, then in place
 
     shader::FeatureBakeParams p = baseParams(dims, spacing);
     p.threshold = threshold;
-    std::vector<Pass> passes(4);
+    std::vector<Pass> passes(3);
     passes[0] = {m_lines.get(), set.set, p, {groups(dims.y, 8), groups(dims.z, 8), 1}};
     p.axis = 1;
     passes[1] = {m_envelope.get(), set.set, p, {groups(dims.x, 8), groups(dims.z, 8), 1}};
     p.axis = 2;
     passes[2] = {m_envelope.get(), set.set, p, {groups(dims.x, 8), groups(dims.y, 8), 1}};
-    p.axis = 0;
-    p.mode = 0;
-    passes[3] = {m_finish.get(), set.set, p, finishGroups(dims)};
-    runPasses(m_ctx, m_layout.get(), {&a}, out, passes);
-    return std::move(out);
+    runPasses(m_ctx, m_layout.get(), out, passes);
+    return out;
 }
 
 gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
@@ -294,11 +276,11 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
     const VkExtent3D e{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
     const gpu::Image texture = uploadMask(m_ctx, indicator, dims);
 
-    Images images = makeImages(m_ctx, e);
-    gpu::Image &a = images.scratch, &out = images.out;
-    // indicator -> a, a -> a along y and z, a -> out. A blur pass reads each
-    // voxel of its line into a ring before it writes that voxel.
-    gpu::DescriptorSet set = makeSet(texture, a, a, out);
+    gpu::Image out = makeField(m_ctx, e);
+    // indicator -> out, then in place along y and z and to the encoded mask. A
+    // blur pass reads each voxel of its line into a ring before it writes that
+    // voxel.
+    gpu::DescriptorSet set = makeSet(texture, out, out, out);
 
     const glm::uvec3 lineGroups[3] = {{groups(dims.y, 8), groups(dims.z, 8), 1},
                                       {groups(dims.x, 8), groups(dims.z, 8), 1},
@@ -316,8 +298,8 @@ gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm:
     shader::FeatureBakeParams p = baseParams(dims, spacing);
     p.mode = 1;
     passes.push_back({m_finish.get(), set.set, p, finishGroups(dims)});
-    runPasses(m_ctx, m_layout.get(), {&a}, out, passes);
-    return std::move(out);
+    runPasses(m_ctx, m_layout.get(), out, passes);
+    return out;
 }
 
 std::vector<float> distanceFieldCpu(const std::vector<uint8_t>& object, glm::ivec3 dims,

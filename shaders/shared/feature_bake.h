@@ -3,16 +3,18 @@
 //
 // Distance field DT: an exact Euclidean distance transform done separably
 // (Meijster et al.; Felzenszwalb and Huttenlocher): edt_lines finds, along x,
-// the squared distance to the nearest background voxel; edt_envelope then
-// takes, along y and then z, the lower envelope of the parabolas
-// f(q) + (spacing * (p - q))^2. Squared distances are in mm^2 and kEdtFar
-// stands for "no background on this line" (+infinity).
+// the distance to the nearest background voxel; edt_envelope then takes,
+// along y and then z, the lower envelope of the parabolas
+// f(q) + (spacing * (p - q))^2, f the squared distance in mm^2 (kEdtFar
+// stands for "no background on this line", +infinity). Every pass works in
+// place in the R16F field the renderer samples and stores the distance in mm
+// (kHalfMax: infinite): no 4-byte scratch image, and each pass rounds to half
+// precision (2^-11 relative), three times in all.
 //
 // Mask M: the segment indicator smoothed by a separable Gaussian (mask_blur,
 // one axis per pass), then encoded by maskEncode.
 //
-// field_finish turns either field into the R16F texel the renderer samples:
-// DT in mm, or M. The field's gradient is not stored: the operator shader takes
+// field_finish encodes M in place. The field's gradient is not stored: the operator shader takes
 // it by central differences where it needs it (featureGradientOf in feature.h),
 // which keeps the field at 2 bytes per voxel instead of 8.
 #ifndef CUTAWAY_FEATURE_BAKE_H
@@ -63,9 +65,13 @@ CW_FUNC float parabolaIntersection(float fq, int q, float fr, int r, float w2) {
     return ((fq - fr) / w2 + float(q * q - r * r)) / (2.0f * float(q - r));
 }
 
-// DT in mm from a squared distance in mm^2 (kHalfMax when infinite or huge).
-CW_FUNC float distanceFromSquared(float d2) {
+// The distance in mm stored for a squared distance in mm^2 (kHalfMax when
+// infinite or huge), and back (kEdtFar for kHalfMax).
+CW_FUNC float storedDistance(float d2) {
     return min(sqrt(d2), kHalfMax);
+}
+CW_FUNC float squaredDistance(float stored) {
+    return stored >= kHalfMax ? kEdtFar : stored * stored;
 }
 
 // M from the smoothed indicator s: >= 0.5 exactly at the segment's voxels, so

@@ -135,9 +135,10 @@ TEST_F(DistanceField, MatchesBruteForce) {
         ASSERT_EQ(field.size(), exact.size());
         int gpuBad = 0, cpuBad = 0;
         for (std::size_t i = 0; i < exact.size(); ++i) {
-            // The GPU stores half floats: round to nearest is within 2^-11 relative;
-            // allow 2^-10 relative plus 1e-3 mm for the float arithmetic before it.
-            if (std::abs(field[i] - exact[i]) > exact[i] * 0x1p-10 + 1e-3 && gpuBad++ < 5)
+            // Each of the GPU's three passes stores half floats, and Vulkan lets
+            // a storage write round toward zero (lavapipe does): within 2^-10
+            // relative each, so 3 * 2^-10 plus 1e-3 mm for the float arithmetic.
+            if (std::abs(field[i] - exact[i]) > exact[i] * 3 * 0x1p-10 + 1e-3 && gpuBad++ < 5)
                 ADD_FAILURE() << "voxel " << i << ": GPU " << field[i] << ", exact " << exact[i];
             if (std::abs(cpu[i] - exact[i]) > exact[i] * 1e-4 + 1e-6 && cpuBad++ < 5)
                 ADD_FAILURE() << "voxel " << i << ": CPU " << cpu[i] << ", exact " << exact[i];

@@ -154,7 +154,8 @@ TEST_F(FeatureFieldsTest, SurfaceFieldIsTheDistanceToTheOutside) {
     const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
     for (std::size_t i = 0; i < expected.size(); ++i) {
         const float w = glm::unpackHalf1x16(halves[i]);
-        ASSERT_NEAR(w, expected[i], expected[i] / 1024.0f + 1e-3f) << i;
+        // Three passes store half floats, each within 2^-10 (feature_bake_test).
+        ASSERT_NEAR(w, expected[i], 3.0f * expected[i] / 1024.0f + 1e-3f) << i;
     }
 }
 
