@@ -49,7 +49,7 @@ public:
 
 private:
     /// A set with every binding written: 0 `texture` (sampled), 1 `src`, 2 `dst`
-    /// (r32f storage, may be one image), 3 `out` (r16f storage), all but `texture` in GENERAL.
+    /// and 3 `out` (r16f storage, may be one image), all but `texture` in GENERAL.
     gpu::DescriptorSet makeSet(const gpu::Image& texture, const gpu::Image& src,
                                const gpu::Image& dst, const gpu::Image& out) const;
 
