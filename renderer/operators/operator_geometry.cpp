@@ -31,6 +31,12 @@ LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolut
     return box;
 }
 
+shader::OperatorParams sampledParams(const shader::OperatorParams& params, glm::dvec3 texel) {
+    shader::OperatorParams p = params;
+    if (p.kind.x == CW_OP_PEELER) p.b.y = static_cast<float>(std::max({texel.x, texel.y, texel.z}));
+    return p;
+}
+
 std::array<glm::dvec3, 8> WorldBox::corners() const {
     std::array<glm::dvec3, 8> c;
     for (int i = 0; i < 8; ++i) {

@@ -76,8 +76,10 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
         }
         op->box = boxes[i];
         if (rebake) {
-            op->map = m_baker.bake(spec.params, glm::vec3(op->box.local.lo),
-                                   glm::vec3(op->box.local.hi), spec.resolution);
+            const operators::LocalBox& local = op->box.local;
+            const glm::dvec3 texel = (local.hi - local.lo) / glm::dvec3(spec.resolution);
+            op->map = m_baker.bake(operators::sampledParams(spec.params, texel),
+                                   glm::vec3(local.lo), glm::vec3(local.hi), spec.resolution);
             gpu::writeImageDescriptor(m_ctx, op->set.set, 1,
                                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, op->map.view.get(),
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);

@@ -20,13 +20,15 @@ struct Texel {
 std::vector<Texel> mapTexels(const OperatorSpec& spec, const operators::LocalBox& domain) {
     const glm::ivec3 res = spec.resolution;
     const glm::vec3 lo(domain.lo), hi(domain.hi);
+    const shader::OperatorParams params =
+        operators::sampledParams(spec.params, (domain.hi - domain.lo) / glm::dvec3(res));
     std::vector<Texel> texels(std::size_t(res.x) * res.y * res.z);
     std::size_t i = 0;
     for (int z = 0; z < res.z; ++z)
         for (int y = 0; y < res.y; ++y)
             for (int x = 0; x < res.x; ++x, ++i) {
                 const glm::vec3 q = glm::mix(lo, hi, (glm::vec3(x, y, z) + 0.5f) / glm::vec3(res));
-                const glm::vec4 b = shader::operatorBackward(q, spec.params);
+                const glm::vec4 b = shader::operatorBackward(q, params);
                 texels[i] = {glm::vec3(b) - q, b.w};
             }
     return texels;

@@ -75,10 +75,15 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 //               the flap overlaps neither itself nor the untouched material in
 //               the box (beyond pi its straight part would dive into it)
 //   b.x  halfWidth  half width along y, in (0, 1]; values above 1 act as 1
+//   b.y  gap  half the gap carved where the flap meets untouched material:
+//             set by a bake to a texel of its map (peelerSampled), 0 in a
+//             scene's parameters (the analytic map is never interpolated)
 // Faces that stay fixed: x = -1, z = -1, and |y| = 1 when halfWidth < 1. The
-// top z = 1 and the end x = 1 are cuts (the flap leaves them). For small
-// theta the lower edge of the flap's end swings up to about t * theta past
-// x = 1, into material outside the box: the collision is not detected.
+// top z = 1 and the end x = 1 are cuts (the flap leaves them). A thick layer
+// ((1 - h)^2 + R^2 < (R + t)^2) bends its underside through the material past
+// x = 1 below z = 1, and for small theta the lower edge of the flap's end
+// swings up to about t * theta past x = 1: where the flap is, it wins, and a
+// baked map carves a gap in the material around it (b.y, see below).
 //
 // Backward map (continuous version): on the flap, its pre-image; elsewhere
 // the identity, which fills the hole the layer left (so Jacobians there are I),
@@ -96,7 +101,13 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 //             interpolated across the flap's outline sees an edge rather than
 //             a smear. Farther away it is like material (w > 0): anything there
 //             is not the operator's business (Eq. 3).
-//   material: + distance to the cut faces (the hole's bottom, sides and end).
+//   material: + distance to the cut faces (the hole's bottom, sides and end),
+//             except within 2 gap of a flap that swept into it or lies on it
+//             (its pre-image there 2 gap or more from the identity): empty,
+//             as the air within 2t, with the flap's pre-image continued up to
+//             gap. Without the gap, the map interpolated between the flap and
+//             that material, both with w > 0, showed a lattice of samples from
+//             neither.
 // ---------------------------------------------------------------------------
 
 CW_FUNC vec3 peelerRadial(float phi) {
@@ -226,13 +237,29 @@ CW_FUNC float peelerUntouchedDistance(vec3 q, OperatorParams o) {
     return min(rim, q.z - (1.0f - o.a.y));
 }
 
+// The flap's pre-image continued to q (bend coordinates f, out of bounds).
+CW_FUNC vec3 peelerContinued(vec3 q, vec3 f, OperatorParams o) {
+    return vec3(o.a.x + f.x, q.y, 1.0f - f.y);
+}
+
+// Whether untouched material at q, at distance d from the flap, lies in the
+// gap carved around a flap that swept into it, lies on it, or moves along the
+// hole's wall beside it (where both sides have w > 0 up to the wall): nearer
+// the flap than the gap, with the flap's pre-image a gap or more away (so not
+// at the hinge, where the two meet continuously).
+CW_FUNC bool peelerInGap(vec3 q, vec3 f, float d, OperatorParams o) {
+    float gap = 2.0f * o.b.y;
+    return f.x >= 0.0f && d < gap && length(peelerContinued(q, f, o) - q) > gap;
+}
+
 // Whether q, off the flap with bend coordinates f and at distance d from it,
 // takes the flap's pre-image continued (see peelerBackward): in the hole or
 // the air, nearer the flap than what the operator leaves alone, and in the
-// air within t of the flap.
+// air within t of the flap; in the material, the near half of the gap.
 CW_FUNC bool peelerContinues(vec3 q, vec3 f, float d, OperatorParams o) {
     if (f.x < 0.0f) return false;
-    if (!peelerInHole(q, o) && !(q.z > 1.0f && d < o.a.y)) return false;
+    if (!peelerInHole(q, o) && q.z <= 1.0f) return d < o.b.y && peelerInGap(q, f, d, o);
+    if (!peelerInHole(q, o) && d >= o.a.y) return false;
     return d < peelerUntouchedDistance(q, o);
 }
 
@@ -255,9 +282,14 @@ CW_FUNC vec4 peelerBackward(vec3 q, OperatorParams o) {
     // halfway across the empty shell in the air.
     bool inHole = peelerInHole(q, o);
     float w = inHole ? 0.0f : peelerHoleFaceDistance(q, o);
-    if (!inHole && q.z <= 1.0f) return vec4(q, w); // material
+    bool material = !inHole && q.z <= 1.0f;
+    if (material && o.b.y <= 0.0f) return vec4(q, w);
     float d = peelerFlapDistance(q, o);
-    vec3 p = peelerContinues(q, f, d, o) ? vec3(h + f.x, q.y, 1.0f - f.y) : q;
+    vec3 p = peelerContinues(q, f, d, o) ? peelerContinued(q, f, o) : q;
+    if (material) {
+        if (peelerInGap(q, f, d, o)) w = min(w, abs(d - o.b.y) - o.b.y);
+        return vec4(p, w);
+    }
     if (inHole) return vec4(p, -min(peelerUntouchedDistance(q, o), d));
     return vec4(p, min(w, abs(d - t) - t)); // air
 }

@@ -142,7 +142,9 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
         SCOPED_TRACE(op.name);
         const glm::ivec3 dims(20, 18, 16);
         const operators::LocalBox box = operators::deformedBounds(op.params, dims);
-        const gpu::Image map = baker.bake(op.params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
+        const shader::OperatorParams params =
+            operators::sampledParams(op.params, (box.hi - box.lo) / glm::dvec3(dims));
+        const gpu::Image map = baker.bake(params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
         const auto bytes =
             gpu::downloadImage(ctx(), map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
         const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
@@ -152,7 +154,7 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
                 for (int x = 0; x < dims.x; ++x) {
                     const glm::vec3 q = glm::mix(glm::vec3(box.lo), glm::vec3(box.hi),
                                                  (glm::vec3(x, y, z) + 0.5f) / glm::vec3(dims));
-                    glm::vec4 expected = shader::operatorBackward(q, op.params);
+                    glm::vec4 expected = shader::operatorBackward(q, params);
                     expected = glm::vec4(glm::vec3(expected) - q, expected.w);
                     const std::size_t t = 4 * std::size_t(x + dims.x * (y + dims.y * z));
                     for (int c = 0; c < 4; ++c) {
