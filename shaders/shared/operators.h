@@ -76,7 +76,7 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 //               the box (beyond pi its straight part would dive into it)
 //   b.x  halfWidth  half width along y, in (0, 1]; values above 1 act as 1
 //   b.y  gap  half the gap carved where the flap meets untouched material:
-//             set by a bake to a texel of its map (peelerSampled), 0 in a
+//             set by a bake to a texel of its map (operators::sampledParams), 0 in a
 //             scene's parameters (the analytic map is never interpolated)
 // Faces that stay fixed: x = -1, z = -1, and |y| = 1 when halfWidth < 1. The
 // top z = 1 and the end x = 1 are cuts (the flap leaves them). A thick layer
@@ -243,7 +243,7 @@ CW_FUNC vec3 peelerContinued(vec3 q, vec3 f, OperatorParams o) {
 }
 
 // Whether untouched material at q, at distance d from the flap, lies in the
-// gap carved around a flap that swept into it, lies on it, or moves along the
+// gap carved around a flap that swept into it, lies on it, or passes the
 // hole's wall beside it (where both sides have w > 0 up to the wall): nearer
 // the flap than the gap, with the flap's pre-image a gap or more away (so not
 // at the hinge, where the two meet continuously).
@@ -258,8 +258,10 @@ CW_FUNC bool peelerInGap(vec3 q, vec3 f, float d, OperatorParams o) {
 // air within t of the flap; in the material, the near half of the gap.
 CW_FUNC bool peelerContinues(vec3 q, vec3 f, float d, OperatorParams o) {
     if (f.x < 0.0f) return false;
-    if (!peelerInHole(q, o) && q.z <= 1.0f) return d < o.b.y && peelerInGap(q, f, d, o);
-    if (!peelerInHole(q, o) && d >= o.a.y) return false;
+    if (!peelerInHole(q, o)) {
+        if (q.z <= 1.0f) return d < o.b.y && peelerInGap(q, f, d, o); // material
+        if (d >= o.a.y) return false;                                 // air beyond t
+    }
     return d < peelerUntouchedDistance(q, o);
 }
 
@@ -297,8 +299,9 @@ CW_FUNC vec4 peelerBackward(vec3 q, OperatorParams o) {
 CW_FUNC mat3 peelerJacobian(vec3 q, OperatorParams o) {
     vec3 f = peelerFlapCoords(q, o);
     if (f.z < 0.0f && !peelerContinues(q, f, peelerFlapDistance(q, o), o)) return mat3(1.0f);
-    if (f.z > 0.5f ||
-        f.z == -1.0f) { // straight part: a rigid motion, x from tau(theta), z from -n(theta)
+    // Straight part (on the flap or continued): a rigid motion, x from
+    // tau(theta), z from -n(theta).
+    if (f.z > 0.5f || f.z == -1.0f) {
         float c = cos(o.a.w);
         float s = sin(o.a.w);
         return mat3(vec3(c, 0.0f, -s), vec3(0.0f, 1.0f, 0.0f), vec3(s, 0.0f, c));
