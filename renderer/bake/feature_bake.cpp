@@ -272,9 +272,16 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
 gpu::Image FeatureBaker::segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
                                      glm::dvec3 spacing, double bandMm) const {
     checkSegmentInputs(indicator, dims, spacing, bandMm);
+    return segmentMask(uploadMask(m_ctx, indicator, dims), spacing, bandMm);
+}
 
-    const VkExtent3D e{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
-    const gpu::Image texture = uploadMask(m_ctx, indicator, dims);
+gpu::Image FeatureBaker::segmentMask(const gpu::Image& texture, glm::dvec3 spacing,
+                                     double bandMm) const {
+    const VkExtent3D e = texture.extent;
+    const glm::ivec3 dims(e.width, e.height, e.depth);
+    checkGrid(dims, spacing, "segment mask");
+    if (!(bandMm >= 0.0) || !std::isfinite(bandMm))
+        throw InputError("segment mask: the band width must be a finite number >= 0 mm");
 
     gpu::Image out = makeField(m_ctx, e);
     // indicator -> out, then in place along y and z and to the encoded mask. A

@@ -28,7 +28,7 @@ public:
     explicit FeatureBaker(const gpu::Context& ctx);
 
     /// Surface alignment: the distance field DT. `values` is the uploaded volume
-    /// texture (R16_UNORM, 3D, SHADER_READ_ONLY_OPTIMAL; see bake/volume_upload.hpp).
+    /// texture (R16_UNORM or R8_UNORM, 3D, SHADER_READ_ONLY_OPTIMAL; see bake/volume_upload.hpp).
     /// A voxel is object when its normalized value > `threshold` (0..1), else background.
     /// Result: kFeatureFieldFormat (R16F), same extent, SHADER_READ_ONLY_OPTIMAL, usage
     /// SAMPLED | STORAGE | TRANSFER_SRC: the exact Euclidean distance in mm from the voxel
@@ -46,6 +46,9 @@ public:
     /// outside.
     gpu::Image segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
                            glm::dvec3 spacing, double bandMm) const;
+    /// The same from the indicator already uploaded: an R8_UNORM 3D texture,
+    /// 1 inside (see uploadMask), SHADER_READ_ONLY_OPTIMAL for compute shaders.
+    gpu::Image segmentMask(const gpu::Image& indicator, glm::dvec3 spacing, double bandMm) const;
 
 private:
     /// A set with every binding written: 0 `texture` (sampled), 1 `src`, 2 `dst`

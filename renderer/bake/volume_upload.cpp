@@ -4,40 +4,130 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace cutaway::bake {
+namespace {
+
+uint16_t texel16(double value, ValueWindow window) {
+    const double scale = window.hi > window.lo ? 1.0 / (window.hi - window.lo) : 0.0;
+    double t = (value - window.lo) * scale;
+    if (!(t > 0.0)) t = 0.0; // also maps NaN to 0
+    return static_cast<uint16_t>(std::lround(std::min(t, 1.0) * 65535.0));
+}
+
+// Calls f(T{}, offset) for the integer types a table by raw value covers.
+template <typename F>
+bool withTableType(VoxelType type, F&& f) {
+    switch (type) {
+    case VoxelType::U8:
+        f(uint8_t{}, 0);
+        return true;
+    case VoxelType::I8:
+        f(int8_t{}, 128);
+        return true;
+    case VoxelType::U16:
+        f(uint16_t{}, 0);
+        return true;
+    case VoxelType::I16:
+        f(int16_t{}, 32768);
+        return true;
+    default:
+        return false;
+    }
+}
+
+template <typename T>
+T load(const std::byte* p) {
+    T v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+} // namespace
+
+ValueTexels::ValueTexels(const Volume& volume, ValueWindow window)
+    : m_volume(volume), m_window(window) {
+    withTableType(volume.type, [&](auto tag, int offset) {
+        using T = decltype(tag);
+        constexpr std::size_t kValues = std::size_t(1) << (8 * sizeof(T));
+        m_offset = offset;
+        m_table.resize(kValues);
+        for (std::size_t k = 0; k < kValues; ++k)
+            m_table[k] = texel16(volume.slope * double(int(k) - offset) + volume.inter, window);
+        // Which raw values occur: the R8 test is over those only.
+        std::vector<uint8_t> seen(kValues, 0);
+        const std::byte* p = volume.data.data();
+        for (std::size_t i = 0, n = volume.voxelCount(); i < n; ++i)
+            seen[std::size_t(int(load<T>(p + i * sizeof(T))) + offset)] = 1;
+        m_r8 = true;
+        for (std::size_t k = 0; k < kValues; ++k)
+            m_r8 = m_r8 && (!seen[k] || m_table[k] % 257 == 0);
+    });
+}
+
+uint16_t ValueTexels::r16(std::size_t i) const {
+    if (m_table.empty()) return texel16(m_volume.value(i), m_window);
+    uint16_t out = 0;
+    withTableType(m_volume.type, [&](auto tag, int offset) {
+        using T = decltype(tag);
+        out = m_table[std::size_t(int(load<T>(m_volume.data.data() + i * sizeof(T))) + offset)];
+    });
+    return out;
+}
+
+void ValueTexels::write(std::size_t first, std::size_t count, std::byte* dst) const {
+    const auto store = [&](std::size_t j, uint16_t t) {
+        if (m_r8) {
+            dst[j] = static_cast<std::byte>(t / 257);
+        } else {
+            std::memcpy(dst + 2 * j, &t, 2);
+        }
+    };
+    const bool table = withTableType(m_volume.type, [&](auto tag, int offset) {
+        using T = decltype(tag);
+        const std::byte* p = m_volume.data.data() + first * sizeof(T);
+        for (std::size_t j = 0; j < count; ++j)
+            store(j, m_table[std::size_t(int(load<T>(p + j * sizeof(T))) + offset)]);
+    });
+    if (!table) {
+        for (std::size_t j = 0; j < count; ++j)
+            store(j, texel16(m_volume.value(first + j), m_window));
+    }
+}
 
 std::vector<uint16_t> normalizeVolume(const Volume& volume, ValueWindow window) {
-    const std::size_t n = volume.voxelCount();
-    std::vector<uint16_t> texels(n);
-    const double scale = window.hi > window.lo ? 1.0 / (window.hi - window.lo) : 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        double t = (volume.value(i) - window.lo) * scale;
-        if (!(t > 0.0)) t = 0.0; // also maps NaN to 0
-        texels[i] = static_cast<uint16_t>(std::lround(std::min(t, 1.0) * 65535.0));
-    }
-    return texels;
+    const ValueTexels texels(volume, window);
+    std::vector<uint16_t> out(volume.voxelCount());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = texels.r16(i);
+    return out;
 }
 
 gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window) {
-    std::vector<uint16_t> texels = normalizeVolume(volume, window);
+    const ValueTexels texels(volume, window);
     VkExtent3D extent{static_cast<uint32_t>(volume.dims.x), static_cast<uint32_t>(volume.dims.y),
                       static_cast<uint32_t>(volume.dims.z)};
     return gpu::createSampledVolume(
-        ctx, VK_FORMAT_R16_UNORM, extent, texels.data(), texels.size() * sizeof(uint16_t),
+        ctx, texels.format(), extent, texels.texelBytes(),
+        [&](std::size_t first, std::size_t count, std::byte* dst) {
+            texels.write(first, count, dst);
+        },
         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims) {
     if (mask.size() != std::size_t(dims.x) * dims.y * dims.z)
         throw RuntimeError("uploadMask: the mask does not match its dimensions");
-    std::vector<uint8_t> texels(mask.size());
-    std::transform(mask.begin(), mask.end(), texels.begin(),
-                   [](uint8_t m) { return m ? uint8_t(255) : uint8_t(0); });
     VkExtent3D extent{static_cast<uint32_t>(dims.x), static_cast<uint32_t>(dims.y),
                       static_cast<uint32_t>(dims.z)};
-    return gpu::createSampledVolume(ctx, VK_FORMAT_R8_UNORM, extent, texels.data(), texels.size(),
-                                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    return gpu::createSampledVolume(
+        ctx, VK_FORMAT_R8_UNORM, extent, 1,
+        [&](std::size_t first, std::size_t count, std::byte* dst) {
+            for (std::size_t j = 0; j < count; ++j)
+                dst[j] = mask[first + j] ? std::byte{255} : std::byte{0};
+        },
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
 }
 
 } // namespace cutaway::bake

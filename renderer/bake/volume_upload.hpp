@@ -1,11 +1,13 @@
 #pragma once
-// Uploads a volume as a 3D R16_UNORM texture of the value normalized over a
-// window: texel = clamp((value - lo) / (hi - lo), 0, 1). Two bytes per voxel
-// whatever the source type, filterable on every Vulkan device.
+// Uploads a volume as a 3D texture of the value normalized over a window:
+// texel = clamp((value - lo) / (hi - lo), 0, 1). R16_UNORM (two bytes per
+// voxel whatever the source type), or R8_UNORM when that holds exactly the
+// same numbers; both filterable on every Vulkan device.
 #include "gpu/context.hpp"
 #include "gpu/resources.hpp"
 #include "volume/volume.hpp"
 
+#include <cstddef>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -16,7 +18,30 @@ struct ValueWindow {
     double hi = 1.0;
 };
 
-/// Texels as uploaded (x fastest), exposed for the CPU reference in tests.
+/// A volume's texels. The value texture is R8_UNORM when every voxel's R16
+/// texel is a multiple of 257 (its normalized value a multiple of 1/255, as
+/// for an 8-bit scan over the window [0, 255] or a label volume over [0, 1]):
+/// k/255 and 257k/65535 are the same number, in half the bytes. Integer
+/// volumes of up to 16 bits are converted through a table by raw value.
+class ValueTexels {
+public:
+    ValueTexels(const Volume& volume, ValueWindow window); ///< keeps a reference to `volume`
+    VkFormat format() const { return m_r8 ? VK_FORMAT_R8_UNORM : VK_FORMAT_R16_UNORM; }
+    std::size_t texelBytes() const { return m_r8 ? 1 : 2; }
+    /// Writes the texels of voxels [first, first + count) in format() to `dst`.
+    void write(std::size_t first, std::size_t count, std::byte* dst) const;
+    /// The R16 texel of voxel i, whatever format() is.
+    uint16_t r16(std::size_t i) const;
+
+private:
+    const Volume& m_volume;
+    ValueWindow m_window;
+    std::vector<uint16_t> m_table; ///< R16 texel by raw value + m_offset; empty: computed
+    int m_offset = 0;
+    bool m_r8 = false;
+};
+
+/// R16 texels (x fastest), the CPU reference in tests and the VTK comparison's input.
 std::vector<uint16_t> normalizeVolume(const Volume& volume, ValueWindow window);
 
 /// A sampled 3D image in SHADER_READ_ONLY_OPTIMAL, readable by fragment and compute shaders.

@@ -4,6 +4,7 @@
 #include "gpu/check.hpp"
 #include "gpu/memory.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace cutaway::gpu {
@@ -152,23 +153,64 @@ void barrierTransferToHost(VkCommandBuffer cmd) {
     vkCmdPipelineBarrier2(cmd, &dep);
 }
 
+void uploadImage(const Context& ctx, const Image& image, std::size_t texelBytes,
+                 const TexelWriter& write, VkImageLayout finalLayout,
+                 VkPipelineStageFlags2 dstStage) {
+    // A chunk is a run of whole z-slices (3D) or layers (arrays).
+    const bool is3D = image.extent.depth > 1;
+    const std::size_t sliceTexels = std::size_t(image.extent.width) * image.extent.height;
+    const uint32_t slices = is3D ? image.extent.depth : image.layers;
+    const uint32_t perChunk = static_cast<uint32_t>(
+        std::clamp<std::size_t>(kStagingBytes / (sliceTexels * texelBytes), 1, slices));
+    Buffer staging = createBuffer(ctx, perChunk * sliceTexels * texelBytes,
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    for (uint32_t first = 0; first < slices; first += perChunk) {
+        const uint32_t count = std::min(perChunk, slices - first);
+        write(first * sliceTexels, count * sliceTexels, static_cast<std::byte*>(staging.mapped));
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            if (first == 0)
+                transition(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED,
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                           VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
+                           VK_ACCESS_2_TRANSFER_WRITE_BIT);
+            VkBufferImageCopy region{};
+            region.imageSubresource = {image.aspect, 0, is3D ? 0 : first, is3D ? 1 : count};
+            region.imageOffset = {0, 0, is3D ? static_cast<int32_t>(first) : 0};
+            region.imageExtent = {image.extent.width, image.extent.height, is3D ? count : 1};
+            vkCmdCopyBufferToImage(cmd, staging.buffer.get(), image.image.get(),
+                                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            if (first + count == slices)
+                transition(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout,
+                           VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstStage,
+                           VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+        });
+    }
+}
+
 void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,
                  VkImageLayout finalLayout, VkPipelineStageFlags2 dstStage) {
-    Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
-    std::memcpy(staging.mapped, data, bytes);
-    ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        transition(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                   VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COPY_BIT,
-                   VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        VkBufferImageCopy region{};
-        region.imageSubresource = {image.aspect, 0, 0, image.layers};
-        region.imageExtent = image.extent;
-        vkCmdCopyBufferToImage(cmd, staging.buffer.get(), image.image.get(),
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        transition(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, finalLayout,
-                   VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, dstStage,
-                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
-    });
+    const std::size_t texels =
+        std::size_t(image.extent.width) * image.extent.height * image.extent.depth * image.layers;
+    if (texels == 0 || bytes % texels != 0)
+        throw RuntimeError("uploadImage: " + std::to_string(bytes) + " bytes for " +
+                           std::to_string(texels) + " texels");
+    const std::size_t texelBytes = bytes / texels;
+    const auto* src = static_cast<const std::byte*>(data);
+    uploadImage(
+        ctx, image, texelBytes,
+        [&](std::size_t first, std::size_t count, std::byte* dst) {
+            std::memcpy(dst, src + first * texelBytes, count * texelBytes);
+        },
+        finalLayout, dstStage);
+}
+
+Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent,
+                          std::size_t texelBytes, const TexelWriter& write,
+                          VkPipelineStageFlags2 readers) {
+    Image image = createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    uploadImage(ctx, image, texelBytes, write, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, readers);
+    return image;
 }
 
 Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent, const void* data,

@@ -6,6 +6,7 @@
 #include "gpu/handle.hpp"
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -49,10 +50,31 @@ void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkI
 /// Makes transfer writes (a copy into a host-visible buffer) visible to the host.
 void barrierTransferToHost(VkCommandBuffer cmd);
 
+/// Writes `count` texels, starting with texel `first` of the image (x fastest,
+/// then y, then z or layer), tightly packed to `dst`.
+using TexelWriter = std::function<void(std::size_t first, std::size_t count, std::byte* dst)>;
+
+/// The most bytes an upload stages at once (at least one z-slice or layer).
+inline constexpr std::size_t kStagingBytes = std::size_t(16) << 20;
+
+/// Fills the whole image with texels of `texelBytes` bytes that `write` makes,
+/// a few z-slices (or layers) at a time through one staging buffer of at most
+/// kStagingBytes, so no copy of the whole image exists on the host; leaves it
+/// in `finalLayout`, readable by `dstStage`. Blocks until done.
+void uploadImage(const Context& ctx, const Image& image, std::size_t texelBytes,
+                 const TexelWriter& write, VkImageLayout finalLayout,
+                 VkPipelineStageFlags2 dstStage);
+
 /// Copies tightly packed texels (layer after layer) into the whole image and leaves it in
 /// `finalLayout`, readable by `dstStage`. Blocks until done.
 void uploadImage(const Context& ctx, const Image& image, const void* data, std::size_t bytes,
                  VkImageLayout finalLayout, VkPipelineStageFlags2 dstStage);
+
+/// A sampled 3D image of `format` whose texels (of `texelBytes`) `write` makes,
+/// left SHADER_READ_ONLY_OPTIMAL for `readers`. Blocks until done.
+Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent,
+                          std::size_t texelBytes, const TexelWriter& write,
+                          VkPipelineStageFlags2 readers);
 
 /// A sampled 3D image of `format` holding `bytes` of tightly packed texels (x
 /// fastest), left SHADER_READ_ONLY_OPTIMAL for `readers`. Blocks until done.

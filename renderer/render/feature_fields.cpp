@@ -9,6 +9,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -79,6 +81,43 @@ void FeatureFields::keepOnly(const std::vector<OperatorSpec>& specs, const GpuVo
     std::erase_if(m_fields, [&](const auto& field) { return !wanted.count(field.first); });
 }
 
+gpu::Image FeatureFields::indicatorTexture(const OperatorSpec& spec,
+                                           const GpuVolume& volume) const {
+    // Written into the upload's staging a few slices at a time: the indicator
+    // is never whole on the host (it would add a byte per voxel to the bake's peak).
+    const Alignment& a = spec.alignment;
+    bool any = false;
+    std::function<bool(std::size_t)> inside;
+    std::optional<LabelBytes> labels;
+    if (a.range) {
+        inside = [&, lo = (*a.range)[0], hi = (*a.range)[1]](std::size_t i) {
+            const double v = volume.scan->value(i);
+            return v >= lo && v <= hi;
+        };
+    } else {
+        if (!volume.labels)
+            throw InputError(spec.name + ": segment alignment by labels needs a label volume");
+        labels.emplace(labelIndicator(*volume.labels, a.labels));
+    }
+    gpu::Image texture = gpu::createSampledVolume(
+        m_ctx, VK_FORMAT_R8_UNORM,
+        {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)}, 1,
+        [&](std::size_t first, std::size_t count, std::byte* dst) {
+            auto* out = reinterpret_cast<std::uint8_t*>(dst);
+            if (labels) labels->write(first, count, out);
+            for (std::size_t j = 0; j < count; ++j) {
+                const bool in = labels ? out[j] != 0 : inside(first + j);
+                out[j] = in ? 255 : 0; // R8_UNORM 1 inside
+                any = any || in;
+            }
+        },
+        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    if (!any)
+        throw InputError(spec.name + ": the segment of its alignment is empty (no voxel " +
+                         (a.range ? "has a value in the range" : "has one of the labels") + ")");
+    return texture;
+}
+
 const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVolume& volume) {
     const Alignment& a = spec.alignment;
     if (a.mode == AlignmentMode::Axis) return m_none;
@@ -95,19 +134,7 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
             bake::uploadMask(m_ctx, objectMask(*volume.scan, threshold(a, volume)), volume.dims);
         field = m_baker.distanceField(objectTexture, volume.spacing, 0.5f);
     } else {
-        std::vector<std::uint8_t> indicator;
-        if (a.range) {
-            indicator = rangeIndicator(*volume.scan, (*a.range)[0], (*a.range)[1]);
-        } else {
-            if (!volume.labels)
-                throw InputError(spec.name + ": segment alignment by labels needs a label volume");
-            indicator = labelIndicator(*volume.labels, a.labels);
-        }
-        if (std::find(indicator.begin(), indicator.end(), 1) == indicator.end())
-            throw InputError(spec.name + ": the segment of its alignment is empty (no voxel " +
-                             (a.range ? "has a value in the range" : "has one of the labels") +
-                             ")");
-        field = m_baker.segmentMask(indicator, volume.dims, volume.spacing, a.band);
+        field = m_baker.segmentMask(indicatorTexture(spec, volume), volume.spacing, a.band);
     }
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -43,6 +43,9 @@ private:
         std::string note; ///< what the field is, for takeNotes
     };
     Described describe(const Alignment& alignment, const GpuVolume& volume);
+    /// The segment of a segment alignment as an R8_UNORM texture, 1 inside;
+    /// throws InputError naming the operator when it is empty.
+    gpu::Image indicatorTexture(const OperatorSpec& spec, const GpuVolume& volume) const;
 
     const gpu::Context& m_ctx;
     bake::FeatureBaker m_baker;

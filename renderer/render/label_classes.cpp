@@ -5,20 +5,19 @@
 #include <unordered_map>
 
 namespace cutaway::render {
-namespace {
 
 // Maps label ids to bytes: a dense table over the ids that occur when their
 // span is small (FreeSurfer ids reach ~14000), a hash map otherwise.
 class LabelLookup {
 public:
-    LabelLookup(const Volume& labels, const std::unordered_map<std::int64_t, std::uint8_t>& map)
-        : m_map(map) {
+    LabelLookup(const Volume& labels, std::unordered_map<std::int64_t, std::uint8_t> map)
+        : m_map(std::move(map)) {
         const ValueRange range = valueRange(labels);
         m_lo = static_cast<std::int64_t>(std::llround(range.min));
         const std::int64_t span = static_cast<std::int64_t>(std::llround(range.max)) - m_lo + 1;
         if (span > 0 && span <= (1 << 24)) {
             m_dense.assign(static_cast<std::size_t>(span), 0);
-            for (const auto& [id, value] : map) {
+            for (const auto& [id, value] : m_map) {
                 if (id >= m_lo && id - m_lo < span)
                     m_dense[static_cast<std::size_t>(id - m_lo)] = value;
             }
@@ -37,48 +36,37 @@ public:
     }
 
 private:
-    const std::unordered_map<std::int64_t, std::uint8_t>& m_map;
+    std::unordered_map<std::int64_t, std::uint8_t> m_map;
     std::int64_t m_lo = 0;
     std::vector<std::uint8_t> m_dense;
 };
 
-std::vector<std::uint8_t> mapLabels(const Volume& labels,
-                                    const std::unordered_map<std::int64_t, std::uint8_t>& map) {
-    const LabelLookup lookup(labels, map);
-    std::vector<std::uint8_t> out(labels.voxelCount());
-    for (std::size_t i = 0; i < out.size(); ++i)
-        out[i] = lookup(labels.value(i));
-    return out;
+LabelBytes::LabelBytes(const Volume& labels, std::unordered_map<std::int64_t, std::uint8_t> map)
+    : m_labels(labels), m_lookup(std::make_unique<LabelLookup>(labels, std::move(map))) {}
+
+LabelBytes::~LabelBytes() = default;
+LabelBytes::LabelBytes(LabelBytes&&) noexcept = default;
+
+void LabelBytes::write(std::size_t first, std::size_t count, std::uint8_t* out) const {
+    for (std::size_t j = 0; j < count; ++j)
+        out[j] = (*m_lookup)(m_labels.value(first + j));
 }
 
-} // namespace
-
-std::vector<std::uint8_t> classLayers(const Volume& labels,
-                                      const std::vector<LabelTransfer>& transfers) {
+LabelBytes classLayers(const Volume& labels, const std::vector<LabelTransfer>& transfers) {
     std::unordered_map<std::int64_t, std::uint8_t> map;
     const std::size_t count = std::min<std::size_t>(transfers.size(), 255);
     for (std::size_t i = 0; i < count; ++i) {
         for (const std::int64_t id : transfers[i].ids)
             map.emplace(id, static_cast<std::uint8_t>(i + 1)); // the first entry wins
     }
-    return mapLabels(labels, map);
+    return LabelBytes(labels, std::move(map));
 }
 
-std::vector<std::uint8_t> labelIndicator(const Volume& labels,
-                                         const std::vector<std::int64_t>& ids) {
+LabelBytes labelIndicator(const Volume& labels, const std::vector<std::int64_t>& ids) {
     std::unordered_map<std::int64_t, std::uint8_t> map;
     for (const std::int64_t id : ids)
         map[id] = 1;
-    return mapLabels(labels, map);
-}
-
-std::vector<std::uint8_t> rangeIndicator(const Volume& scan, double lo, double hi) {
-    std::vector<std::uint8_t> out(scan.voxelCount());
-    for (std::size_t i = 0; i < out.size(); ++i) {
-        const double v = scan.value(i);
-        out[i] = v >= lo && v <= hi ? 1 : 0;
-    }
-    return out;
+    return LabelBytes(labels, std::move(map));
 }
 
 } // namespace cutaway::render

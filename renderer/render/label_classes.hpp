@@ -1,25 +1,41 @@
 #pragma once
 // What label volumes turn into on the way to the device: each voxel's
 // classification layer (classification by label) and the indicator of a
-// segment of interest (segment alignment). Host-side, one pass over the voxels.
+// segment of interest (segment alignment). Host-side, written straight into
+// an upload's staging buffer a few slices at a time.
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
 #include <cstdint>
+#include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace cutaway::render {
 
+class LabelLookup;
+
+/// A byte per voxel from its label id, written a range of voxels at a time (an
+/// upload stages a few slices, not the whole volume). Keeps a reference to
+/// `labels`.
+class LabelBytes {
+public:
+    LabelBytes(const Volume& labels, std::unordered_map<std::int64_t, std::uint8_t> map);
+    ~LabelBytes();
+    LabelBytes(LabelBytes&&) noexcept;
+    /// The bytes of voxels [first, first + count), x fastest.
+    void write(std::size_t first, std::size_t count, std::uint8_t* out) const;
+
+private:
+    const Volume& m_labels;
+    std::unique_ptr<LabelLookup> m_lookup;
+};
+
 /// Per voxel: 0 for /transfer, i + 1 for the first entry of `transfers` that
 /// lists the voxel's label. At most 255 entries.
-std::vector<std::uint8_t> classLayers(const Volume& labels,
-                                      const std::vector<LabelTransfer>& transfers);
+LabelBytes classLayers(const Volume& labels, const std::vector<LabelTransfer>& transfers);
 
 /// Per voxel: 1 where the label is one of `ids`, else 0.
-std::vector<std::uint8_t> labelIndicator(const Volume& labels,
-                                         const std::vector<std::int64_t>& ids);
-
-/// Per voxel: 1 where the value (after slope/intercept) lies in [lo, hi], else 0.
-std::vector<std::uint8_t> rangeIndicator(const Volume& scan, double lo, double hi);
+LabelBytes labelIndicator(const Volume& labels, const std::vector<std::int64_t>& ids);
 
 } // namespace cutaway::render

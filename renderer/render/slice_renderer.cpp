@@ -78,15 +78,20 @@ gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const Gpu
 
 // Each voxel's classification layer (R8_UINT), or a single 0 without labels.
 gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume) {
-    std::vector<std::uint8_t> layers{0};
-    VkExtent3D extent{1, 1, 1};
-    if (volume.labels && !scene.labelTransfers.empty()) {
-        layers = classLayers(*volume.labels, scene.labelTransfers);
-        extent = {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)};
+    const VkPipelineStageFlags2 readers =
+        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    if (!volume.labels || scene.labelTransfers.empty()) {
+        const std::uint8_t none = 0;
+        return gpu::createSampledVolume(ctx, VK_FORMAT_R8_UINT, {1, 1, 1}, &none, 1, readers);
     }
-    return gpu::createSampledVolume(ctx, VK_FORMAT_R8_UINT, extent, layers.data(), layers.size(),
-                                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    const LabelBytes layers = classLayers(*volume.labels, scene.labelTransfers);
+    return gpu::createSampledVolume(
+        ctx, VK_FORMAT_R8_UINT,
+        {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)}, 1,
+        [&](std::size_t first, std::size_t count, std::byte* dst) {
+            layers.write(first, count, reinterpret_cast<std::uint8_t*>(dst));
+        },
+        readers);
 }
 
 // A render-pass attachment cleared at the start: colour to transparent black,

@@ -3,6 +3,7 @@
 // operator, while the same operator axis-aligned moves it; and classification
 // by label colours each tissue by its own transfer function.
 #include "bake/feature_bake.hpp"
+#include "core/error.hpp"
 #include "gpu_fixture.hpp"
 #include "job/render_job.hpp"
 #include "render/feature_fields.hpp"
@@ -10,6 +11,8 @@
 #include "volume/phantom.hpp"
 #include "volume/segmentation.hpp"
 
+#include <algorithm>
+#include <array>
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -156,6 +159,54 @@ TEST_F(FeatureFieldsTest, SurfaceFieldIsTheDistanceToTheOutside) {
         const float w = glm::unpackHalf1x16(halves[i]);
         // Three passes store half floats, each within 2^-10 (feature_bake_test).
         ASSERT_NEAR(w, expected[i], 3.0f * expected[i] / 1024.0f + 1e-3f) << i;
+    }
+}
+
+// A segment alignment's indicator streams from the labels or the scan into
+// its texture: the field equals the bake of the indicator made whole on the
+// host, and a segment without a voxel is bad input naming the operator.
+TEST_F(FeatureFieldsTest, SegmentFieldIsTheMaskOfItsLabelsOrValues) {
+    const Phantom phantom = makePhantom("head", glm::ivec3(40));
+    bake::GradientBaker gradients(ctx());
+    const render::GpuVolume volume =
+        render::prepareVolume(ctx(), gradients, std::make_shared<Volume>(phantom.values),
+                              {0.0, 255.0}, std::nullopt, std::make_shared<Volume>(phantom.labels));
+    render::FeatureFields fields(ctx());
+    const bake::FeatureBaker baker(ctx());
+    const auto download = [&](const gpu::Image& image) {
+        return gpu::downloadImage(ctx(), image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 2);
+    };
+    OperatorSpec spec;
+    spec.name = "the peeler";
+    spec.alignment.mode = AlignmentMode::Segment;
+    spec.alignment.band = 2.0;
+    for (const bool byRange : {false, true}) {
+        SCOPED_TRACE(byRange ? "value range" : "labels");
+        std::vector<std::uint8_t> indicator(phantom.values.voxelCount());
+        if (byRange) {
+            spec.alignment.range = std::array<double, 2>{100.0, 140.0};
+            for (std::size_t i = 0; i < indicator.size(); ++i)
+                indicator[i] = phantom.values.value(i) >= 100.0 && phantom.values.value(i) <= 140.0;
+        } else {
+            spec.alignment.labels = {3};
+            for (std::size_t i = 0; i < indicator.size(); ++i)
+                indicator[i] = phantom.labels.raw(i) == 3;
+        }
+        const std::size_t inside = std::count(indicator.begin(), indicator.end(), 1);
+        ASSERT_GT(inside, 100u);
+        ASSERT_LT(inside, indicator.size() / 2);
+        const auto expected =
+            download(baker.segmentMask(indicator, phantom.values.dims, glm::dvec3(1.0), 2.0));
+        EXPECT_EQ(download(fields.fieldFor(spec, volume)), expected);
+    }
+    spec.alignment.range.reset();
+    spec.alignment.labels = {9}; // no voxel has it
+    try {
+        fields.fieldFor(spec, volume);
+        ADD_FAILURE() << "an empty segment must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("the peeler"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("empty"), std::string::npos) << e.what();
     }
 }
 
