@@ -41,12 +41,12 @@ nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
                          const BenchOptions& o) {
     nlohmann::json bakes;
     const Scene base = loadScene(entry.scene);
-    Volume scan;
-    std::shared_ptr<const Volume> labels;
+    std::shared_ptr<const Volume> volume, labels;
     bakes["read_ms"] = medianMs(1, [&] {
-        scan = job::loadSceneVolume(base);
-        labels = job::loadSceneLabels(base, scan);
+        volume = std::make_shared<const Volume>(job::loadSceneVolume(base));
+        labels = job::loadSceneLabels(base, volume);
     });
+    const Volume& scan = *volume;
     const bake::ValueWindow window = job::sceneWindow(base, scan);
     bake::GradientBaker gradients(ctx);
     gpu::Image values;
@@ -56,7 +56,6 @@ nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
     });
     bakes["gradients_ms"] = medianMs(o.bakeRepeats, [&] { gradients.bake(values, scan.spacing); });
     values = gpu::Image{};
-    const auto volume = std::make_shared<const Volume>(std::move(scan));
     const render::GpuVolume gv =
         render::prepareVolume(ctx, gradients, volume, window, std::nullopt, labels);
     const auto featureMs = [&](const std::string& alignment) {

@@ -28,47 +28,63 @@ Volume loadSceneVolume(const Scene& scene) {
 namespace {
 
 // Checks labels (read or made) against the scan's grid; see loadSceneLabels.
-std::shared_ptr<const Volume> checkedLabels(const Scene& scene, Volume read, const Volume& scan) {
+void checkLabels(const Scene& scene, const Volume& labels, const Volume& scan) {
     const LabelSource& src = *scene.labels;
     const std::string name =
         src.phantom ? "the " + scene.volume.phantom + " phantom's labels" : src.file.string();
-    auto labels = std::make_shared<Volume>(std::move(read));
-    if (scene.volume.spacing) labels->spacing = *scene.volume.spacing;
     const auto text = [](auto v) {
         std::ostringstream out;
         out << v.x << " x " << v.y << " x " << v.z;
         return out.str();
     };
-    if (labels->dims != scan.dims)
-        throw InputError(name + ": the label volume's grid is " + text(labels->dims) +
+    if (labels.dims != scan.dims)
+        throw InputError(name + ": the label volume's grid is " + text(labels.dims) +
                          " voxels, the scan's " + text(scan.dims) +
                          "; labels must be on the scan's grid");
-    const glm::dvec3 ratio = labels->spacing / scan.spacing;
+    const glm::dvec3 ratio = labels.spacing / scan.spacing;
     for (int a = 0; a < 3; ++a) {
         if (std::abs(ratio[a] - 1.0) > 1e-3)
-            throw InputError(name + ": the label volume's spacing is " + text(labels->spacing) +
+            throw InputError(name + ": the label volume's spacing is " + text(labels.spacing) +
                              " mm, the scan's " + text(scan.spacing) +
                              " mm; labels must be on the scan's grid");
     }
-    if (labels->type == VoxelType::F32 || labels->type == VoxelType::F64 || labels->slope != 1.0 ||
-        labels->inter != 0.0)
+    if (labels.type == VoxelType::F32 || labels.type == VoxelType::F64 || labels.slope != 1.0 ||
+        labels.inter != 0.0)
         throw InputError(name + ": label ids must be stored as integers (got " +
-                         std::string(voxelTypeName(labels->type)) +
-                         (labels->slope != 1.0 || labels->inter != 0.0 ? " with scaling" : "") +
-                         ")");
-    if (valueRange(*labels).min < 0.0) throw InputError(name + ": label ids must not be negative");
+                         std::string(voxelTypeName(labels.type)) +
+                         (labels.slope != 1.0 || labels.inter != 0.0 ? " with scaling" : "") + ")");
+    if (valueRange(labels).min < 0.0) throw InputError(name + ": label ids must not be negative");
+}
+
+std::shared_ptr<const Volume> checkedLabels(const Scene& scene, Volume read, const Volume& scan) {
+    auto labels = std::make_shared<Volume>(std::move(read));
+    if (scene.volume.spacing) labels->spacing = *scene.volume.spacing;
+    checkLabels(scene, *labels, scan);
     return labels;
+}
+
+// Whether /labels names the file /volume reads (as a volume file, not raw).
+bool labelsAreTheScan(const Scene& scene) {
+    if (!scene.labels || scene.labels->phantom || !scene.volume.phantom.empty() || scene.volume.raw)
+        return false;
+    std::error_code ec;
+    return std::filesystem::equivalent(scene.labels->file, scene.volume.file, ec) && !ec;
 }
 
 } // namespace
 
-std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene, const Volume& scan) {
+std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene,
+                                              const std::shared_ptr<const Volume>& scan) {
     if (!scene.labels) return nullptr;
+    if (labelsAreTheScan(scene)) {
+        checkLabels(scene, *scan, *scan);
+        return scan;
+    }
     return checkedLabels(scene,
                          scene.labels->phantom
                              ? makePhantom(scene.volume.phantom, scene.volume.phantomSize).labels
                              : readVolume(scene.labels->file),
-                         scan);
+                         *scan);
 }
 
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {
@@ -106,13 +122,14 @@ FrameVolume frameVolume(const Scene& scene) {
         // transfer function that is transparent for air.
         placed = operators::resampleSequentially(placed, baked, static_cast<float>(window.lo));
     }
+    auto shared = std::make_shared<const Volume>(std::move(placed.volume));
     // Sequential composition with several operators resamples the scan; the
     // parser allows no labels then (they would no longer match it).
     std::shared_ptr<const Volume> labels =
         sequential(scene) ? nullptr
-        : phantomLabels   ? checkedLabels(scene, std::move(*phantomLabels), placed.volume)
-                          : loadSceneLabels(scene, placed.volume);
-    return FrameVolume{std::move(placed), window, std::move(labels)};
+        : phantomLabels   ? checkedLabels(scene, std::move(*phantomLabels), *shared)
+                          : loadSceneLabels(scene, shared);
+    return FrameVolume{std::move(shared), placed.worldLo, window, std::move(labels)};
 }
 
 std::string frameVolumeKey(const Scene& scene) {
@@ -194,11 +211,10 @@ Image FrameRenderer::render(const Scene& scene) {
     if (!m_volume || key != m_volumeKey) {
         m_volume.reset(); // free the old textures before making new ones
         FrameVolume fv = frameVolume(scene);
-        const glm::ivec3 dims = fv.placed.volume.dims;
+        const glm::ivec3 dims = fv.scan->dims;
         try {
             m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
-                m_ctx, m_baker, std::make_shared<const Volume>(std::move(fv.placed.volume)),
-                fv.window, fv.placed.worldLo, std::move(fv.labels)));
+                m_ctx, m_baker, std::move(fv.scan), fv.window, fv.worldLo, std::move(fv.labels)));
         } catch (const ResourceError& e) {
             const VolumeSource& v = scene.volume;
             throw ResourceError("the volume " +

@@ -28,8 +28,11 @@ Volume loadSceneVolume(const Scene& scene);
 /// The scene's label volume (/labels), or null without one: read from its
 /// file or made with the phantom, checked against the scan's grid (same dims,
 /// spacing equal to within 0.1 %; /volume/spacing applies to both), with
-/// integer ids >= 0. Throws InputError naming the file on a mismatch.
-std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene, const Volume& scan);
+/// integer ids >= 0. Throws InputError naming the file on a mismatch. When
+/// /labels names the scan's own file (a label volume rendered as itself), the
+/// scan is checked and returned: the file is read and held once.
+std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene,
+                                              const std::shared_ptr<const Volume>& scan);
 
 /// Reads every glTF model of /meshes once, as rendering would, so that
 /// `cutaway validate` reports a bad model (InputError naming the file).
@@ -43,9 +46,10 @@ bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
 /// sequential composition the scan deformed by every operator but the last
 /// (resampled on the CPU). The window is always the scan's.
 struct FrameVolume {
-    operators::PlacedVolume placed;
+    std::shared_ptr<const Volume> scan;
+    glm::dvec3 worldLo{0.0}; ///< where the scan's corner lies in the world
     bake::ValueWindow window;
-    std::shared_ptr<const Volume> labels; ///< on placed.volume's grid, or null
+    std::shared_ptr<const Volume> labels; ///< on the scan's grid (maybe the scan), or null
 };
 FrameVolume frameVolume(const Scene& scene);
 

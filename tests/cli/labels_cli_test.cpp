@@ -4,6 +4,8 @@
 // bakes are recorded in the EXR header.
 #include "cli_util.hpp"
 #include "io/exr.hpp"
+#include "job/render_job.hpp"
+#include "scene/scene.hpp"
 #include "volume/phantom.hpp"
 #include "volume/volume.hpp"
 
@@ -200,6 +202,77 @@ TEST_F(LabelsCli, SurfaceAlignmentRecordsOtsusThresholdInTheHeader) {
               std::string::npos)
         << note;
     EXPECT_NE(note.find(" (Otsu's threshold), baked in "), std::string::npos) << note;
+}
+
+TEST_F(LabelsCli, AnEmptySegmentIsBadInputNamingTheOperator) {
+    writeScan();
+    writeLabels(labelVolume(glm::ivec3(kScanSide), VoxelType::I16, glm::dvec3(1.0),
+                            [](int, int, int) { return 1000.0; })); // shell only, no core
+    const CommandResult r = render(writeScene());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("operator 0 (peeler)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("empty"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames" / "labels_0000.exr")) << "no frame may be written";
+}
+
+// A label volume rendered as itself (/volume and /labels name one file) is
+// read and held once: the scan is its own label volume, checked as labels
+// are. It renders as with a copy of the file for labels.
+TEST_F(LabelsCli, ALabelVolumeRenderedAsItselfIsReadOnce) {
+    writeLabels(labelVolume(glm::ivec3(kScanSide), VoxelType::I16, glm::dvec3(1.0),
+                            [](int x, int y, int z) { return shellAndCore(x, y, z); }));
+    fs::copy_file(m_dir / "labels.nrrd", m_dir / "copy.nrrd");
+    // The scan is labels.nrrd, its label volume `file`.
+    const auto sceneWith = [&](const std::string& file) {
+        return write("scene.json", R"({
+          "version": 1,
+          "volume": { "file": "labels.nrrd" },
+          "labels": { "file": ")" + file +
+                                       R"(", "names": { "shell": 1000, "core": 2000 } },
+          "transfer": {
+            "points": [ { "value": 0, "color": [0.9, 0.6, 0.5], "alpha": 0 },
+                        { "value": 2000, "color": [0.9, 0.6, 0.5], "alpha": 0.4 } ],
+            "labels": [ { "labels": ["core"],
+                          "points": [ { "value": 0, "color": [1, 1, 0.8], "alpha": 0.2 },
+                                      { "value": 2000, "color": [1, 1, 0.8], "alpha": 0.9 } ] } ] },
+          "operators": [ { "type": "peeler",
+            "placement": { "translate": [0, 0, 6], "scale": [20, 20, 12] },
+            "resolution": 16,
+            "alignment": { "mode": "segment", "labels": ["core"], "band": 2 } } ],
+          "output": { "pattern": "frames/labels_####.exr" }
+        })");
+    };
+    std::vector<Image> images;
+    for (const std::string labels : {"labels.nrrd", "copy.nrrd"}) {
+        SCOPED_TRACE(labels);
+        const fs::path scene = sceneWith(labels);
+        const Scene parsed = loadScene(scene);
+        const auto scan = std::make_shared<const Volume>(job::loadSceneVolume(parsed));
+        const auto read = job::loadSceneLabels(parsed, scan);
+        ASSERT_TRUE(read);
+        if (labels == "labels.nrrd") {
+            EXPECT_EQ(read.get(), scan.get()) << "the scan is its own label volume";
+        } else {
+            EXPECT_NE(read.get(), scan.get());
+            EXPECT_EQ(read->data, scan->data);
+        }
+        const CommandResult r = render(scene);
+        ASSERT_EQ(r.code, 0) << r.output;
+        images.push_back(readExr(m_dir / "frames" / "labels_0000.exr"));
+    }
+    ASSERT_EQ(images[0].rgba.size(), images[1].rgba.size());
+    EXPECT_EQ(images[0].rgba, images[1].rgba);
+    double alpha = 0.0;
+    for (std::size_t i = 3; i < images[0].rgba.size(); i += 4)
+        alpha += images[0].rgba[i];
+    EXPECT_GT(alpha, 50.0) << "the volume must show for the comparison to mean much";
+
+    // The checks of a label volume still apply to a scan used as its labels.
+    writeLabels(labelVolume(glm::ivec3(kScanSide), VoxelType::F32, glm::dvec3(1.0),
+                            [](int x, int y, int z) { return shellAndCore(x, y, z); }));
+    const CommandResult bad = render(sceneWith("labels.nrrd"));
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("integers"), std::string::npos) << bad.output;
 }
 
 } // namespace

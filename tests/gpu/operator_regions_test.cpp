@@ -157,12 +157,11 @@ TEST_F(OperatorRegionsRender, SkippingChangesNoPixel) {
                 const Scene scene = sceneWith(op, alignment, spacing);
                 SCOPED_TRACE(scene.operators.at(0).name + " " + alignment + " d " +
                              std::to_string(spacing));
-                const Volume volume = job::loadSceneVolume(scene);
+                const auto volume = std::make_shared<const Volume>(job::loadSceneVolume(scene));
                 auto labels = job::loadSceneLabels(scene, volume);
                 bake::GradientBaker baker(ctx());
-                const render::GpuVolume gv =
-                    render::prepareVolume(ctx(), baker, std::make_shared<Volume>(volume),
-                                          job::sceneWindow(scene, volume), std::nullopt, labels);
+                const render::GpuVolume gv = render::prepareVolume(
+                    ctx(), baker, volume, job::sceneWindow(scene, *volume), std::nullopt, labels);
                 render::SliceRenderer renderer(ctx());
                 renderer.setOperatorSkipping(false);
                 const Image whole = renderer.render(scene, gv);
