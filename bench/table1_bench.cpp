@@ -6,6 +6,7 @@
 // own. Prints tables and writes bench/results.json; asserts nothing.
 #include "bench_util.hpp"
 #include "core/error.hpp"
+#include "core/process_memory.hpp"
 #include "dataset_bench.hpp"
 #include "turntable_bench.hpp"
 
@@ -112,6 +113,7 @@ std::vector<std::string> split(const std::string& text) {
 } // namespace
 
 int main(int argc, char** argv) {
+    cutaway::unmapLargeBlocksWhenFreed();
     CLI::App app{"cutaway's Table 1 benchmark: frame times, bake times, peak memory"};
     std::string table = "bench/table1.json", output = "bench/results.json", vtkDir, datasets,
                 alignments, spacings = "1.0,0.5";

@@ -11,6 +11,7 @@
 // Exit codes: 0 success, 1 runtime failure, 2 bad input or usage;
 // 128 + signal when interrupted by SIGINT or SIGTERM.
 #include "core/error.hpp"
+#include "core/process_memory.hpp"
 #include "gpu/context.hpp"
 #include "interrupt.hpp"
 #include "job/render_job.hpp"
@@ -153,6 +154,7 @@ int runExport(const ExportArgs& args) {
 } // namespace
 
 int main(int argc, char** argv) {
+    cutaway::unmapLargeBlocksWhenFreed();
     CLI::App app{"cutaway: illustrative volume manipulation, rendered to EXR"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("cutaway ") + CUTAWAY_VERSION);
