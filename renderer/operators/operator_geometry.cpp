@@ -31,7 +31,9 @@ LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolut
     return box;
 }
 
-shader::OperatorParams sampledParams(const shader::OperatorParams& params, glm::dvec3 texel) {
+shader::OperatorParams sampledParams(const shader::OperatorParams& params, const LocalBox& box,
+                                     glm::ivec3 resolution) {
+    const glm::dvec3 texel = (box.hi - box.lo) / glm::dvec3(resolution);
     shader::OperatorParams p = params;
     if (p.kind.x == CW_OP_PEELER) p.b.y = static_cast<float>(std::max({texel.x, texel.y, texel.z}));
     return p;

@@ -25,10 +25,11 @@ LocalBox materialBounds(const shader::OperatorParams& params);
 /// map, whose edge texels then lie outside the moved material.
 LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolution);
 
-/// The parameters a map baked with texels of `texel` local units evaluates:
-/// a peeler carves a gap of two texels (of its coarsest axis) where its flap
+/// The parameters a map over `box` with `resolution` texels evaluates: a
+/// peeler carves a gap of two texels (of its coarsest axis) where its flap
 /// meets untouched material (b.y in shared/operators.h); others unchanged.
-shader::OperatorParams sampledParams(const shader::OperatorParams& params, glm::dvec3 texel);
+shader::OperatorParams sampledParams(const shader::OperatorParams& params, const LocalBox& box,
+                                     glm::ivec3 resolution);
 
 /// An oriented box in the world: the local box under an affine map.
 struct WorldBox {

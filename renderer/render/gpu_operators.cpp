@@ -77,8 +77,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
         op->box = boxes[i];
         if (rebake) {
             const operators::LocalBox& local = op->box.local;
-            const glm::dvec3 texel = (local.hi - local.lo) / glm::dvec3(spec.resolution);
-            op->map = m_baker.bake(operators::sampledParams(spec.params, texel),
+            op->map = m_baker.bake(operators::sampledParams(spec.params, local, spec.resolution),
                                    glm::vec3(local.lo), glm::vec3(local.hi), spec.resolution);
             gpu::writeImageDescriptor(m_ctx, op->set.set, 1,
                                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, op->map.view.get(),

@@ -20,8 +20,7 @@ struct Texel {
 std::vector<Texel> mapTexels(const OperatorSpec& spec, const operators::LocalBox& domain) {
     const glm::ivec3 res = spec.resolution;
     const glm::vec3 lo(domain.lo), hi(domain.hi);
-    const shader::OperatorParams params =
-        operators::sampledParams(spec.params, (domain.hi - domain.lo) / glm::dvec3(res));
+    const shader::OperatorParams params = operators::sampledParams(spec.params, domain, res);
     std::vector<Texel> texels(std::size_t(res.x) * res.y * res.z);
     std::size_t i = 0;
     for (int z = 0; z < res.z; ++z)

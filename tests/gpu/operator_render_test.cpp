@@ -142,8 +142,7 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
         SCOPED_TRACE(op.name);
         const glm::ivec3 dims(20, 18, 16);
         const operators::LocalBox box = operators::deformedBounds(op.params, dims);
-        const shader::OperatorParams params =
-            operators::sampledParams(op.params, (box.hi - box.lo) / glm::dvec3(dims));
+        const shader::OperatorParams params = operators::sampledParams(op.params, box, dims);
         const gpu::Image map = baker.bake(params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
         const auto bytes =
             gpu::downloadImage(ctx(), map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);

@@ -59,15 +59,14 @@ TEST_F(GpuTest, StreamedUploadsCrossStagingChunks) {
             std::size_t(c.extent.width) * c.extent.height * c.extent.depth * c.layers;
         ASSERT_GT(texels * c.texelBytes, gpu::kStagingBytes);
         const gpu::Image image =
-            c.layers > 1 ? gpu::createImageArray(ctx(), c.format, {c.extent.width, c.extent.height},
-                                                 c.layers,
-                                                 VK_IMAGE_USAGE_SAMPLED_BIT |
-                                                     VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                                                     VK_IMAGE_USAGE_TRANSFER_SRC_BIT)
-                         : gpu::createImage(ctx(), VK_IMAGE_TYPE_3D, c.format, c.extent,
-                                            VK_IMAGE_USAGE_SAMPLED_BIT |
-                                                VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                                                VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+            c.layers > 1
+                ? gpu::createImageArray(
+                      ctx(), c.format, {c.extent.width, c.extent.height}, c.layers,
+                      VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                          VK_IMAGE_USAGE_TRANSFER_SRC_BIT)
+                : gpu::createImage(ctx(), VK_IMAGE_TYPE_3D, c.format, c.extent,
+                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         std::size_t written = 0;
         gpu::uploadImage(
             ctx(), image, c.texelBytes,
@@ -128,14 +127,20 @@ TEST_F(GpuTest, ValueTextureIsR8ExactlyWhenR8HoldsTheSameNumbers) {
     Volume offset = randomVolume<uint8_t>(dims, VoxelType::U8, 0, 255, 8);
     offset.inter = 1.0; // 1..256 over [0, 255]: 0 never occurs, 256 clamps to 255
     Case cases[] = {
-        {"uint8 over [0, 255]", randomVolume<uint8_t>(dims, VoxelType::U8, 0, 255, 6),
-         {0.0, 255.0}, VK_FORMAT_R8_UNORM},
+        {"uint8 over [0, 255]",
+         randomVolume<uint8_t>(dims, VoxelType::U8, 0, 255, 6),
+         {0.0, 255.0},
+         VK_FORMAT_R8_UNORM},
         {"labels over [0, 1]", std::move(labels), {0.0, 1.0}, VK_FORMAT_R8_UNORM},
         {"uint8 shifted by the intercept", std::move(offset), {0.0, 255.0}, VK_FORMAT_R8_UNORM},
-        {"uint8 over [0, 200]", randomVolume<uint8_t>(dims, VoxelType::U8, 0, 255, 9),
-         {0.0, 200.0}, VK_FORMAT_R16_UNORM},
-        {"uint16 over its range", randomVolume<uint16_t>(dims, VoxelType::U16, 0, 4000, 10),
-         {0.0, 4000.0}, VK_FORMAT_R16_UNORM},
+        {"uint8 over [0, 200]",
+         randomVolume<uint8_t>(dims, VoxelType::U8, 0, 255, 9),
+         {0.0, 200.0},
+         VK_FORMAT_R16_UNORM},
+        {"uint16 over its range",
+         randomVolume<uint16_t>(dims, VoxelType::U16, 0, 4000, 10),
+         {0.0, 4000.0},
+         VK_FORMAT_R16_UNORM},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.what);
@@ -143,10 +148,10 @@ TEST_F(GpuTest, ValueTextureIsR8ExactlyWhenR8HoldsTheSameNumbers) {
         // The same texels into an image the test can read back.
         const bake::ValueTexels values(c.volume, c.window);
         const VkExtent3D extent{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
-        const gpu::Image image = gpu::createImage(
-            ctx(), VK_IMAGE_TYPE_3D, values.format(), extent,
-            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        const gpu::Image image =
+            gpu::createImage(ctx(), VK_IMAGE_TYPE_3D, values.format(), extent,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                                 VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         gpu::uploadImage(
             ctx(), image, values.texelBytes(),
             [&](std::size_t first, std::size_t count, std::byte* dst) {
@@ -159,10 +164,9 @@ TEST_F(GpuTest, ValueTextureIsR8ExactlyWhenR8HoldsTheSameNumbers) {
         const std::vector<uint16_t> texels = bake::normalizeVolume(c.volume, c.window);
         for (std::size_t i = 0; i < texels.size(); ++i) {
             // The number a shader reads: k / 255 or k / 65535.
-            const double got = bytes == 1 ? double(uint8_t(back[i])) / 255.0
-                                          : double(uint8_t(back[2 * i]) |
-                                                   uint8_t(back[2 * i + 1]) << 8) /
-                                                65535.0;
+            const double got =
+                bytes == 1 ? double(uint8_t(back[i])) / 255.0
+                           : double(uint8_t(back[2 * i]) | uint8_t(back[2 * i + 1]) << 8) / 65535.0;
             ASSERT_EQ(got, double(texels[i]) / 65535.0) << "voxel " << i;
         }
     }
