@@ -5,10 +5,15 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gradient.h"
 
-// Each invocation walks a column of kColumn voxels along z with a sliding
-// window of three 3x3 planes: 9 texel fetches per voxel instead of the
-// operator's 54 (what a software rasterizer pays for, fetch by fetch).
+// Each invocation bakes a block kRun voxels wide along x and kColumn deep
+// along z, walking z with a sliding window of three planes. The operator is
+// separable (sobelWeight: [1 2 1] / 4 across each axis it does not
+// differentiate), so each plane keeps, per column x, the value smoothed
+// along y and its difference along y: (kRun + 2) * 3 texel fetches per plane
+// for kRun voxels (4.5 per voxel instead of 9) and a few adds per voxel
+// instead of 27 weighted terms per axis.
 #define kColumn 16
+#define kRun 4
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 0) uniform sampler3D volumeTex;
 layout(set = 0, binding = 1, rgba8_snorm) uniform writeonly image3D gradientImage;
@@ -16,36 +21,48 @@ layout(push_constant) uniform Push { GradientParams params; };
 
 float at(ivec3 p) { return texelFetch(volumeTex, clamp(p, ivec3(0), params.dims - 1), 0).r; }
 
-// planes[k][(x + 1) + 3 * (y + 1)]: plane k of the window (0: z - 1, 1: z, 2: z + 1).
-float planes[3][9];
+// Plane k of the window (0: z - 1, 1: z, 2: z + 1), column i (x - 1 + i):
+// the value smoothed along y ([1 2 1]) and its central difference along y.
+float smoothY[3][kRun + 2];
+float diffY[3][kRun + 2];
 
 void loadPlane(int k, ivec3 p) {
-    for (int y = -1; y <= 1; ++y)
-        for (int x = -1; x <= 1; ++x)
-            planes[k][(x + 1) + 3 * (y + 1)] = at(p + ivec3(x, y, 0));
+    for (int i = 0; i < kRun + 2; ++i) {
+        ivec3 q = p + ivec3(i - 1, 0, 0);
+        float below = at(q - ivec3(0, 1, 0)), here = at(q), above = at(q + ivec3(0, 1, 0));
+        smoothY[k][i] = (below + above) + 2.0 * here;
+        diffY[k][i] = above - below;
+    }
 }
 
-float v(int x, int y, int z) { return planes[z + 1][(x + 1) + 3 * (y + 1)]; }
+// [1 2 1] across x of `row` around column i. Each sum adds a voxel's two
+// neighbours first, so a volume mirrored about a plane bakes the mirrored
+// gradient to the bit (rounding does not depend on the side).
+float smoothX(float row[kRun + 2], int i) { return (row[i - 1] + row[i + 1]) + 2.0 * row[i]; }
 
 void main() {
-    ivec3 id = ivec3(gl_GlobalInvocationID.xy, gl_GlobalInvocationID.z * kColumn);
+    ivec3 id = ivec3(gl_GlobalInvocationID.x * kRun, gl_GlobalInvocationID.y,
+                     gl_GlobalInvocationID.z * kColumn);
     if (id.x >= params.dims.x || id.y >= params.dims.y || id.z >= params.dims.z) return;
     loadPlane(0, id + ivec3(0, 0, -1));
     loadPlane(1, id);
-    for (int i = 0; i < kColumn && id.z + i < params.dims.z; ++i) {
-        ivec3 p = id + ivec3(0, 0, i);
-        loadPlane(2, p + ivec3(0, 0, 1));
-        vec3 delta = vec3(0.0);
-        for (int a = -1; a <= 1; ++a) {
-            for (int b = -1; b <= 1; ++b) {
-                float w = sobelWeight(a, b);
-                delta.x += w * (v(1, a, b) - v(-1, a, b));
-                delta.y += w * (v(a, 1, b) - v(a, -1, b));
-                delta.z += w * (v(a, b, 1) - v(a, b, -1));
-            }
+    for (int s = 0; s < kColumn && id.z + s < params.dims.z; ++s) {
+        loadPlane(2, id + ivec3(0, 0, s + 1));
+        for (int r = 0; r < kRun; ++r) {
+            if (id.x + r >= params.dims.x) break;
+            int i = r + 1;
+            vec3 delta;
+            delta.x = (smoothY[0][i + 1] - smoothY[0][i - 1]) +
+                      2.0 * (smoothY[1][i + 1] - smoothY[1][i - 1]) +
+                      (smoothY[2][i + 1] - smoothY[2][i - 1]);
+            delta.y = smoothX(diffY[0], i) + 2.0 * smoothX(diffY[1], i) + smoothX(diffY[2], i);
+            delta.z = smoothX(smoothY[2], i) - smoothX(smoothY[0], i);
+            imageStore(gradientImage, id + ivec3(r, 0, s),
+                       encodeGradient(delta * (1.0 / 16.0), params));
         }
-        imageStore(gradientImage, p, encodeGradient(delta, params));
-        planes[0] = planes[1];
-        planes[1] = planes[2];
+        smoothY[0] = smoothY[1];
+        smoothY[1] = smoothY[2];
+        diffY[0] = diffY[1];
+        diffY[1] = diffY[2];
     }
 }

@@ -39,7 +39,7 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing) con
     params.halfInvSpacing = glm::vec3(0.5 / spacing);
 
     gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &params,
-                          sizeof(params), glm::uvec3(8, 8, 16)); // kColumn voxels deep
+                          sizeof(params), glm::uvec3(8 * 4, 8, 16)); // kRun wide, kColumn deep
     return out;
 }
 
