@@ -5,7 +5,7 @@
 // where slicing would and calls the same per-sample code (sample_common.h).
 // What it saves over slicing: a slab's back value is the next slab's front
 // (one volume fetch per sample instead of two), no rasterization or blending,
-// and a ray stops the moment it is opaque. It also steps over empty bricks,
+// and a ray stops the moment it is opaque. It also steps over empty cells,
 // and takes the gradient and lighting only at visible slabs: lavapipe runs 8
 // rays in lock-step and pays for both sides of a branch, but a loop ends when
 // all its lanes leave it, so transparent runs are an inner loop of their own.
@@ -15,26 +15,32 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
-// One texel per brick of kBrickVoxels^3 (render/occupancy.hpp): 0 where every
-// sample and slab up to a brick long is transparent, brick and margin alike.
-layout(set = 0, binding = 6) uniform usampler3D brickTex;
+// One texel per cell of kRayCellVoxels^3 (render/ray_cells.hpp): 0 where the
+// cell is occupied; else r, and every cell within r - 1 of it (chessboard
+// distance) is empty: each sample there, and each slab up to the margin long
+// that starts there, is transparent.
+layout(set = 0, binding = 6) uniform usampler3D cellTex;
 layout(push_constant) uniform Ray {
     mat4 clipToWorld;
-    vec4 boxLo; // the volume's occupied region (world, mm)
+    vec4 boxLo; // the occupied cells' bounds (world, mm)
     vec4 boxHi;
-    vec4 bricksPerTexture; // xyz: bricks across the texture, the last one partial
+    vec4 cellsPerTexture; // xyz: cells across the texture, the last one partial;
+                          // w: the longest slab they cover (voxels along each axis)
 } ray;
 
-// How many steps of `tcStep` from `tc` until the ray leaves the brick it is
-// in, when that brick is empty; 0 when it is occupied. Never steps past a
-// sample outside the brick, so it skips only samples the brick's flag says
-// are transparent.
-float stepsOverEmpty(vec3 tc, vec3 tcStep) {
-    vec3 at = tc * ray.bricksPerTexture.xyz;
-    ivec3 brick = clamp(ivec3(floor(at)), ivec3(0), textureSize(brickTex, 0) - 1);
-    if (texelFetch(brickTex, brick, 0).r != 0u) return 0.0;
-    vec3 step = tcStep * ray.bricksPerTexture.xyz;
-    vec3 wall = vec3(brick) + vec3(greaterThan(step, vec3(0.0)));
+// How many steps of `tcStep` from `tc` until the ray leaves the cube of empty
+// cells around the cell it is in, when that cell is empty and the ray's slabs
+// are no longer than the cells' margin; 0 otherwise. Never steps past a sample
+// outside the cube, so it skips only samples (and the slabs they start) that
+// the cells say are transparent.
+float stepsOverEmpty(vec3 tc, vec3 tcStep, bool slabsInMargin) {
+    vec3 at = tc * ray.cellsPerTexture.xyz;
+    ivec3 cell = clamp(ivec3(floor(at)), ivec3(0), textureSize(cellTex, 0) - 1);
+    uint free = texelFetch(cellTex, cell, 0).r;
+    if (!slabsInMargin || free == 0u) return 0.0;
+    vec3 step = tcStep * ray.cellsPerTexture.xyz;
+    float r = float(free); // the empty cube: cells [cell - (r - 1), cell + r)
+    vec3 wall = vec3(cell) + mix(vec3(1.0 - r), vec3(r), greaterThan(step, vec3(0.0)));
     vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
     return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
 }
@@ -67,17 +73,20 @@ void main() {
         vec3 p = origin + dir * (((first + 0.5) * spacing - so) / fd);
         vec3 tc = toTexture(p);
         vec3 tcStep = toTexture(p + step) - tc;
+        // The cells cover slabs up to cellsPerTexture.w voxels long.
+        vec3 voxelStep = abs(tcStep) * vec3(textureSize(volumeTex, 0));
+        bool slabsInMargin = max(voxelStep.x, max(voxelStep.y, voxelStep.z)) <= ray.cellsPerTexture.w;
         float front = textureLod(volumeTex, tc, 0.0).r;
         float k = first;
-        bool haveFront = true; // false after stepping over empty bricks
+        bool haveFront = true; // false after stepping over empty cells
         while (k <= last) {
             // Transparent slabs cost a volume fetch and a table lookup, empty
-            // bricks a brick lookup; the gradient and the lighting run once
+            // cells a cell lookup; the gradient and the lighting run once
             // every lane is at a visible slab or done.
             float next = 0.0;
             vec4 c = vec4(0.0);
             while (k <= last) {
-                float skip = stepsOverEmpty(tc, tcStep);
+                float skip = stepsOverEmpty(tc, tcStep, slabsInMargin);
                 if (skip > 0.0) {
                     k += skip;
                     tc += skip * tcStep;

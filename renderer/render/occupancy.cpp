@@ -1,5 +1,6 @@
 #include "render/occupancy.hpp"
 
+#include "render/preintegration.hpp"
 #include "render/transfer_table.hpp"
 
 #include <algorithm>
@@ -54,22 +55,40 @@ void fillSums(BrickOccupancy& occ) {
 
 } // namespace
 
+VisibleValues::VisibleValues(const std::vector<const TransferFunction*>& transfers,
+                             bake::ValueWindow window, bool preintegrated) {
+    std::vector<bool> visible(kTransferTableSize, false);
+    for (const TransferFunction* tf : transfers) {
+        const std::vector<glm::vec4> table = tabulateTransfer(*tf, window);
+        for (int i = 0; i < kTransferTableSize; ++i)
+            visible[i] = visible[i] || table[i].w > 0.0f;
+    }
+    if (preintegrated) {
+        // preintegrate() takes entry i of its n from the function at
+        // (size - 1) * i / (n - 1), between two of its entries.
+        std::vector<bool> coarse(kPreintegrationSize, false);
+        for (int i = 0; i < kPreintegrationSize; ++i) {
+            const int at = (kTransferTableSize - 1) * i / (kPreintegrationSize - 1);
+            coarse[i] = visible[at] || visible[std::min(at + 1, kTransferTableSize - 1)];
+        }
+        visible = std::move(coarse);
+    }
+    m_upTo.assign(visible.size() + 1, 0);
+    for (std::size_t i = 0; i < visible.size(); ++i)
+        m_upTo[i + 1] = m_upTo[i] + (visible[i] ? 1 : 0);
+}
+
+bool VisibleValues::anyIn(float lo, float hi) const {
+    const float last = static_cast<float>(m_upTo.size() - 2);
+    const int first = std::clamp(static_cast<int>(std::floor(lo * last)), 0, int(last));
+    const int end = std::clamp(static_cast<int>(std::ceil(hi * last)), 0, int(last)) + 1;
+    return m_upTo[std::size_t(end)] > m_upTo[std::size_t(first)];
+}
+
 BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
-                              const std::vector<const TransferFunction*>& transfers) {
+                              const VisibleValues& visible) {
     const glm::ivec3 bricks = (scan.dims + (kBrickVoxels - 1)) / kBrickVoxels;
     const std::vector<Range> ranges = brickRanges(scan, bricks, window);
-    // visibleUpTo[i]: how many table entries in [0, i) have opacity, for any function.
-    std::vector<int> visibleUpTo(kTransferTableSize + 1, 0);
-    {
-        std::vector<bool> visible(kTransferTableSize, false);
-        for (const TransferFunction* tf : transfers) {
-            const std::vector<glm::vec4> table = tabulateTransfer(*tf, window);
-            for (int i = 0; i < kTransferTableSize; ++i)
-                visible[i] = visible[i] || table[i].w > 0.0f;
-        }
-        for (int i = 0; i < kTransferTableSize; ++i)
-            visibleUpTo[i + 1] = visibleUpTo[i] + visible[i];
-    }
     const auto at = [&](int x, int y, int z) {
         return std::size_t(x) + std::size_t(bricks.x) * (y + std::size_t(bricks.y) * z);
     };
@@ -79,7 +98,6 @@ BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWin
     occ.brickMm = double(kBrickVoxels) * scan.spacing;
     std::vector<uint8_t>& occupied = occ.flags;
     occupied.assign(ranges.size(), 0);
-    const float last = float(kTransferTableSize - 1);
     for (int z = 0; z < bricks.z; ++z)
         for (int y = 0; y < bricks.y; ++y)
             for (int x = 0; x < bricks.x; ++x) {
@@ -93,9 +111,7 @@ BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWin
                             r.hi = std::max(r.hi, n.hi);
                         }
                 if (r.lo > r.hi) continue;
-                const int first = static_cast<int>(std::floor(r.lo * last));
-                const int end = static_cast<int>(std::ceil(r.hi * last)) + 1;
-                occupied[at(x, y, z)] = visibleUpTo[end] > visibleUpTo[first];
+                occupied[at(x, y, z)] = visible.anyIn(r.lo, r.hi) ? 1 : 0;
             }
 
     fillSums(occ);

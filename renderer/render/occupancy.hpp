@@ -19,6 +19,24 @@ namespace cutaway::render {
 
 constexpr int kBrickVoxels = 8;
 
+/// Which normalized values (over the window) the frame's classification can
+/// give opacity to, in the bins of the table the shaders read: the 1D
+/// function's entries (post-classification) or the pre-integrated table's,
+/// whose entries resample the function (so a visible entry of the function
+/// makes its neighbours in the coarser table visible too).
+class VisibleValues {
+public:
+    VisibleValues(const std::vector<const TransferFunction*>& transfers, bake::ValueWindow window,
+                  bool preintegrated);
+    /// Whether a sample, or a slab whose two ends are, between lo and hi can
+    /// have opacity: some bin from floor(lo * (n - 1)) to ceil(hi * (n - 1))
+    /// (the table's linear filtering) is visible for some function.
+    bool anyIn(float lo, float hi) const;
+
+private:
+    std::vector<int> m_upTo; ///< visible bins in [0, i)
+};
+
 /// Cells [lo, hi) of a grid.
 struct CellRun {
     glm::ivec3 lo, hi;
@@ -46,9 +64,9 @@ struct BrickOccupancy {
 };
 
 /// The occupancy of `scan` (whose box in the world is `box`), for values
-/// normalized over `window` and classified by any of `transfers`.
+/// normalized over `window`, where `visible` says which can show.
 BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
-                              const std::vector<const TransferFunction*>& transfers);
+                              const VisibleValues& visible);
 
 /// Every brick occupied: for a volume whose values are not on the host.
 BrickOccupancy fullOccupancy(const Box& box);

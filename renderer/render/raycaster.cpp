@@ -1,6 +1,7 @@
 #include "render/raycaster.hpp"
 
 #include "raycast_comp.spv.h"
+#include "render/ray_cells.hpp"
 
 namespace cutaway::render {
 namespace {
@@ -9,7 +10,7 @@ struct RayPush { // matches the push constants of shaders/raycast.comp.glsl
     glm::mat4 clipToWorld;
     glm::vec4 boxLo;
     glm::vec4 boxHi;
-    glm::vec4 bricksPerTexture;
+    glm::vec4 cellsPerTexture; // w: the longest slab the cells cover, in voxels
 };
 
 } // namespace
@@ -43,7 +44,8 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target) c
     gpu::writeImageDescriptor(m_ctx, set.set, 4, sampled, in.classes, ro, m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                               target.view.get(), VK_IMAGE_LAYOUT_GENERAL);
-    gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, in.bricks, ro, m_nearest);
+    gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, m_cells.distance.view.get(), ro,
+                              m_nearest);
     return set;
 }
 
@@ -60,15 +62,38 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant) {
     return found->second.get();
 }
 
+void Raycaster::prepareCells(const GpuVolume& volume, const VisibleValues& visible,
+                             uint64_t occupancySerial, double slabMm) {
+    const int margin = rayCellMargin(slabMm / volume.smallestSpacing());
+    const std::pair<uint64_t, int> key(occupancySerial, margin);
+    if (m_cells.distance.image && m_cells.key == key) return;
+    m_cells.distance = {}; // freed before its successor is made
+    // Without the scan on the host: one occupied cell, the whole box.
+    RayCells cells{glm::ivec3(1), margin, {1}, {0}, glm::ivec3(0), glm::ivec3(1)};
+    glm::dvec3 cellMm = volume.box.hi - volume.box.lo;
+    if (volume.scan) {
+        cells = rayCells(*volume.scan, volume.window, visible, margin);
+        cellMm = double(kRayCellVoxels) * volume.spacing;
+    }
+    const glm::uvec3 n(cells.cells);
+    m_cells.distance =
+        gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, cells.distance.data(),
+                                 cells.distance.size(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    m_cells.perTexture = glm::vec4((volume.box.hi - volume.box.lo) / cellMm, double(margin) + 0.5);
+    m_cells.bounds = {volume.box.lo + glm::dvec3(cells.lo) * cellMm,
+                      glm::min(volume.box.lo + glm::dvec3(cells.hi) * cellMm, volume.box.hi)};
+    if (cells.lo == cells.hi) m_cells.bounds = {glm::dvec3(1.0), glm::dvec3(-1.0)}; // rays miss
+    m_cells.key = key;
+}
+
 void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
-                       const CameraMatrices& camera, const Box& occupied,
-                       glm::vec3 bricksPerTexture, const SliceVariant& variant) {
+                       const CameraMatrices& camera, const SliceVariant& variant) {
     gpu::transition(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     const RayPush push{glm::mat4(glm::inverse(camera.viewProj)),
-                       glm::vec4(glm::vec3(occupied.lo), 0.0f),
-                       glm::vec4(glm::vec3(occupied.hi), 0.0f), glm::vec4(bricksPerTexture, 0.0f)};
+                       glm::vec4(glm::vec3(m_cells.bounds.lo), 0.0f),
+                       glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f), m_cells.perTexture};
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant));
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &set, 0,
                             nullptr);

@@ -9,9 +9,13 @@
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 #include "render/camera.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/occupancy.hpp"
 #include "render/slice_pipeline.hpp"
 
+#include <cstdint>
 #include <map>
+#include <utility>
 
 namespace cutaway::render {
 
@@ -24,19 +28,20 @@ public:
         VkBuffer uniforms;
         VkDeviceSize uniformBytes;
         VkImageView values, gradients, transfer, classes;
-        VkImageView bricks; ///< R8_UINT, one texel per brick: 1 occupied (occupancy.hpp)
     };
+    /// Remakes the empty-space cells (ray_cells.hpp) the rays step over when
+    /// `occupancySerial` (what `visible` was made for) or the margin that
+    /// slabs up to `slabMm` long need has changed. Call before bind().
+    void prepareCells(const GpuVolume& volume, const VisibleValues& visible,
+                      uint64_t occupancySerial, double slabMm);
     gpu::DescriptorSet bind(const Inputs& inputs, const gpu::Image& target) const;
 
     /// Records the pass: `target` (RGBA32F, storage) goes from UNDEFINED to
     /// TRANSFER_SRC_OPTIMAL holding premultiplied colour over nothing.
-    /// `occupied` bounds what the rays march through; inside it they step over
-    /// the bricks that Inputs::bricks marks empty.
-    /// `bricksPerTexture` is how many bricks span the texture along each axis
-    /// (the volume's voxels / kBrickVoxels).
+    /// The rays march through the occupied cells' bounds and step over the
+    /// empty cells.
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
-                const CameraMatrices& camera, const Box& occupied, glm::vec3 bricksPerTexture,
-                const SliceVariant& variant);
+                const CameraMatrices& camera, const SliceVariant& variant);
 
 private:
     VkPipeline pipelineFor(const SliceVariant& variant);
@@ -46,6 +51,13 @@ private:
     gpu::DescriptorSetLayoutHandle m_setLayout;
     gpu::PipelineLayoutHandle m_layout;
     std::map<SliceVariant, gpu::PipelineHandle> m_pipelines;
+    struct Cells {
+        gpu::Image distance;                ///< R8_UINT, RayCells::distance
+        glm::vec4 perTexture{0.0f};         ///< xyz: cells across the texture; w: the longest slab
+                                            ///< they cover, in voxels along each axis
+        Box bounds;                         ///< the occupied cells in the world
+        std::pair<uint64_t, int> key{0, 0}; ///< occupancy serial, margin
+    } m_cells;
 };
 
 } // namespace cutaway::render

@@ -198,15 +198,18 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
         for (const LabelTransfer& t : scene.labelTransfers)
             transfers.push_back(&t.transfer);
     }
-    std::vector<double> key{double(volume.serial), volume.window.lo, volume.window.hi};
+    const bool preintegrated = scene.render.classification == Classification::Preintegrated;
+    std::vector<double> key{double(volume.serial), volume.window.lo, volume.window.hi,
+                            preintegrated ? 1.0 : 0.0};
     for (const TransferFunction* tf : transfers) {
         key.push_back(double(tf->points.size()));
         for (const TransferPoint& p : tf->points)
             key.insert(key.end(), {p.value, double(p.alpha)});
     }
     if (key != m_occupiedKey) {
+        m_visible.emplace(transfers, volume.window, preintegrated);
         m_occupancy = volume.scan
-                          ? brickOccupancy(*volume.scan, volume.box, volume.window, transfers)
+                          ? brickOccupancy(*volume.scan, volume.box, volume.window, *m_visible)
                           : fullOccupancy(volume.box);
         m_occupied = m_occupancy.boxes();
         m_occupiedKey = std::move(key);
@@ -450,7 +453,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     if (raycast) {
-        Image image = renderRaycast(cam, volume, transfer, variant);
+        Image image = renderRaycast(cam, volume, transfer, variant, reachMm);
         compositeUnder(image, scene.render.background);
         return image;
     }
@@ -550,7 +553,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
 }
 
 Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
-                                   const gpu::Image& transfer, const SliceVariant& variant) {
+                                   const gpu::Image& transfer, const SliceVariant& variant,
+                                   double slabMm) {
     const uint32_t width = m_color.extent.width, height = m_color.extent.height;
     if (!m_rayTarget.image || m_rayTarget.extent.width != width ||
         m_rayTarget.extent.height != height) {
@@ -560,30 +564,13 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
         m_rayReadback = gpu::createBuffer(m_ctx, 16ull * width * height,
                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
-    // The rays march through the bounds of the occupied bricks.
-    Box occupied{glm::dvec3(1.0), glm::dvec3(-1.0)}; // empty: every ray misses
-    for (const Box& b : m_occupied) {
-        occupied.lo = occupied.lo.x > occupied.hi.x ? b.lo : glm::min(occupied.lo, b.lo);
-        occupied.hi = glm::max(occupied.hi, b.hi);
-    }
-    if (!m_brickFlags.image || m_brickFlagsSerial != m_occupancySerial) {
-        const glm::ivec3 n = m_occupancy.bricks;
-        m_brickFlags = gpu::createSampledVolume(
-            m_ctx, VK_FORMAT_R8_UINT,
-            {static_cast<uint32_t>(n.x), static_cast<uint32_t>(n.y), static_cast<uint32_t>(n.z)},
-            m_occupancy.flags.data(), m_occupancy.flags.size(),
-            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-        m_brickFlagsSerial = m_occupancySerial;
-    }
-    const glm::vec3 bricksPerTexture((m_occupancy.box.hi - m_occupancy.box.lo) /
-                                     m_occupancy.brickMm);
+    m_raycaster->prepareCells(volume, *m_visible, m_occupancySerial, slabMm);
     const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
                                    volume.values.view.get(), volume.gradients.view.get(),
-                                   transfer.view.get(),      m_classes.view.get(),
-                                   m_brickFlags.view.get()};
+                                   transfer.view.get(),      m_classes.view.get()};
     const gpu::DescriptorSet set = m_raycaster->bind(inputs, m_rayTarget);
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        m_raycaster->record(cmd, set.set, m_rayTarget, cam, occupied, bricksPerTexture, variant);
+        m_raycaster->record(cmd, set.set, m_rayTarget, cam, variant);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = m_rayTarget.extent;

@@ -24,6 +24,8 @@
 #include "scene/scene.hpp"
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 
 namespace cutaway::render {
 
@@ -66,8 +68,9 @@ private:
     const std::vector<operators::LocalBox>& regionsFor(std::size_t index, const GpuOperator& op,
                                                        double reachMm);
     /// render.method "raycast": the frame by ray casting, over nothing.
+    /// `slabMm`: the longest slab of the frame (its most oblique ray's).
     Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
-                        const gpu::Image& transfer, const SliceVariant& variant);
+                        const gpu::Image& transfer, const SliceVariant& variant, double slabMm);
     static void compositeUnder(Image& image, glm::vec4 background);
     /// The pipeline of `variant`, made on first use (a few per scene).
     VkPipeline pipelineFor(const SliceVariant& variant);
@@ -85,8 +88,7 @@ private:
     std::unique_ptr<Raycaster> m_raycaster;
     gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
     gpu::Buffer m_rayReadback;
-    gpu::Image m_brickFlags; ///< m_occupancy.flags for the rays, only while scenes ray-cast
-    uint64_t m_brickFlagsSerial = 0;
+    std::optional<VisibleValues> m_visible; ///< what the frame's classification can show
     BrickOccupancy m_occupancy;
     std::vector<Box> m_occupied; ///< m_occupancy.boxes(): the volume's proxies
     std::vector<double> m_occupiedKey;

@@ -82,8 +82,11 @@ TEST(OperatorRegions, CoverEveryPointWhoseSampleCanShow) {
     const Scene base = sceneWith(kOperators[0], "");
     const Volume volume = job::loadSceneVolume(base);
     const render::Box box{-glm::dvec3(volume.dims) * 0.5, glm::dvec3(volume.dims) * 0.5};
-    const render::BrickOccupancy occupancy =
-        render::brickOccupancy(volume, box, job::sceneWindow(base, volume), {&base.transfer});
+    const bake::ValueWindow window = job::sceneWindow(base, volume);
+    const render::BrickOccupancy occupancy = render::brickOccupancy(
+        volume, box, window,
+        render::VisibleValues({&base.transfer}, window,
+                              base.render.classification == Classification::Preintegrated));
     std::mt19937 rng(7);
     for (const char* op : kOperators) {
         const OperatorSpec spec = sceneWith(op, "").operators.at(0);

@@ -81,8 +81,8 @@ TEST_F(Raycast, MatchesSlicingOrthographicWithLightsAndLabels) {
 }
 
 // A scan that is air but for a spherical shell (value 200) and a ball (100),
-// placed off centre so that a brick grid read mirrored skips visible samples.
-// Its sizes are not multiples of the brick (8).
+// placed off centre so that a cell grid read mirrored skips visible samples.
+// Its sizes are not multiples of a cell (4) or a brick (8).
 Volume shellAndBall() {
     Volume v = Volume::allocate({61, 70, 45}, VoxelType::U8);
     for (int z = 0; z < v.dims.z; ++z)
@@ -100,7 +100,7 @@ Volume shellAndBall() {
     return v;
 }
 
-class RaycastBricks : public Raycast {
+class RaycastCells : public Raycast {
 protected:
     void SetUp() override {
         Raycast::SetUp();
@@ -119,27 +119,27 @@ protected:
     }
     const std::filesystem::path m_file =
         std::filesystem::temp_directory_path() /
-        ("cutaway_raycast_bricks_" + std::to_string(::getpid()) + ".nrrd");
+        ("cutaway_raycast_cells_" + std::to_string(::getpid()) + ".nrrd");
 };
 
 // Shell and ball.
 constexpr const char* kBoth = R"({"points": [{"value": 0, "color": [1, 1, 1], "alpha": 0},
     {"value": 60, "color": [1, 1, 1], "alpha": 0},
     {"value": 200, "color": [1, 0.9, 0.8], "alpha": 0.5}]})";
-// The shell only: the ball's bricks are empty.
+// The shell only: the ball's cells are empty.
 constexpr const char* kShellOnly = R"({"points": [{"value": 0, "color": [1, 1, 1], "alpha": 0},
     {"value": 150, "color": [1, 1, 1], "alpha": 0},
     {"value": 200, "color": [1, 0.9, 0.8], "alpha": 0.5}]})";
-// The ball only: the shell's bricks are empty.
+// The ball only: the shell's cells are empty.
 constexpr const char* kBallOnly = R"({"points": [{"value": 0, "color": [1, 1, 1], "alpha": 0},
     {"value": 60, "color": [1, 0.5, 0.5], "alpha": 0},
     {"value": 100, "color": [1, 0.5, 0.5], "alpha": 0.4},
     {"value": 140, "color": [1, 0.5, 0.5], "alpha": 0}]})";
 
-TEST_F(RaycastBricks, StepsOverEmptyBricksWithoutLosingASample) {
-    // The rays cross the shell's front, step over the empty bricks inside it
+TEST_F(RaycastCells, StepsOverEmptyCellsWithoutLosingASample) {
+    // The rays cross the shell's front, step over the empty cells inside it
     // and around it, and meet its back and the ball; the close camera makes
-    // them cross bricks at every angle.
+    // them cross cells at every angle.
     json scene = sceneWith(kBoth);
     scene["camera"]["orbit"]["distance"] = 130;
     EXPECT_GT(expectSameAsSlicing(scene, "pre-integrated"), 300.0) << "the shell must show";
@@ -147,11 +147,17 @@ TEST_F(RaycastBricks, StepsOverEmptyBricksWithoutLosingASample) {
     scene["camera"]["orbit"]["azimuth"] = 117;
     scene["camera"]["orbit"]["elevation"] = -35;
     expectSameAsSlicing(scene, "post-classified, another view");
+    // Longer slabs, and more oblique rays at the corners: the cells' margin
+    // grows with them.
+    scene["render"]["classification"] = "preintegrated";
+    scene["render"]["slice_spacing"] = 2.5;
+    scene["camera"]["fov"] = 70;
+    expectSameAsSlicing(scene, "d = 2.5, a wide field of view");
 }
 
-TEST_F(RaycastBricks, FollowTheTransferFunctionFromFrameToFrame) {
+TEST_F(RaycastCells, FollowTheTransferFunctionFromFrameToFrame) {
     // One renderer, one frame with the shell only, then one with the ball
-    // only: bricks kept from the first frame would step over the ball.
+    // only: cells kept from the first frame would step over the ball.
     json shell = sceneWith(kShellOnly), ball = sceneWith(kBallOnly);
     shell["render"]["method"] = ball["render"]["method"] = "raycast";
     const Scene first = parseScene(shell, "/nonexistent", "test");

@@ -1,0 +1,239 @@
+// Empty-space skipping's bookkeeping, on the CPU: which values the tables the
+// shaders read can show (VisibleValues) and the ray caster's cells (RayCells)
+// with their distances to the nearest occupied cell.
+// The claim the ray caster relies on: in a cell flagged empty, every
+// trilinear sample and every slab up to the margin long that starts there is
+// transparent.
+#include "render/occupancy.hpp"
+#include "render/preintegration.hpp"
+#include "render/ray_cells.hpp"
+#include "render/transfer_table.hpp"
+#include "volume/volume.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <gtest/gtest.h>
+#include <random>
+
+namespace cutaway::test {
+namespace {
+
+using render::kRayCellVoxels;
+
+// Visible only in a narrow band of values, so that most of the scan is air.
+TransferFunction band(double lo, double hi) {
+    return {{{0.0, glm::vec3(1.0f), 0.0f},
+             {lo, glm::vec3(1.0f), 0.0f},
+             {0.5 * (lo + hi), glm::vec3(1.0f), 0.6f},
+             {hi, glm::vec3(1.0f), 0.0f},
+             {255.0, glm::vec3(1.0f), 0.0f}}};
+}
+
+constexpr bake::ValueWindow kWindow{0.0, 255.0};
+
+// Air with a few blobs of different values and sizes, sizes not multiples of a cell.
+Volume blobs() {
+    Volume v = Volume::allocate({29, 23, 34}, VoxelType::U8);
+    const struct {
+        glm::dvec3 centre;
+        double radius, value;
+    } list[] = {{{6, 5, 7}, 3.0, 120}, {{20, 15, 25}, 5.0, 200}, {{14, 4, 30}, 2.0, 60}};
+    for (int z = 0; z < v.dims.z; ++z)
+        for (int y = 0; y < v.dims.y; ++y)
+            for (int x = 0; x < v.dims.x; ++x) {
+                double value = 0.0;
+                for (const auto& b : list) {
+                    const double d = glm::length(glm::dvec3(x, y, z) - b.centre);
+                    value = std::max(value, b.value * std::clamp(b.radius + 0.5 - d, 0.0, 1.0));
+                }
+                v.data[v.index(x, y, z)] = std::byte(static_cast<uint8_t>(value));
+            }
+    return v;
+}
+
+// The normalized value the GPU samples at voxel coordinates p (voxel i's
+// centre at i), trilinear with clamp to edge.
+float sampleAt(const Volume& v, glm::dvec3 p) {
+    p = glm::clamp(p, glm::dvec3(0.0), glm::dvec3(v.dims - 1));
+    const glm::ivec3 i0 = glm::min(glm::ivec3(glm::floor(p)), v.dims - 2);
+    const glm::dvec3 t = p - glm::dvec3(i0);
+    double sum = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        const glm::ivec3 o(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+        const glm::dvec3 w = glm::mix(1.0 - t, t, glm::dvec3(o));
+        sum += w.x * w.y * w.z * v.value(i0.x + o.x, i0.y + o.y, i0.z + o.z) / 255.0;
+    }
+    return static_cast<float>(sum);
+}
+
+// Whether the table of n entries per axis, filtered linearly at values a and
+// b (texel centres at i / (n - 1); one axis when post-classified), can give
+// opacity there.
+bool tableShows(const std::vector<glm::vec4>& table, int n, bool twoD, float a, float b) {
+    const auto reach = [n](float v) {
+        const float x = v * float(n - 1);
+        const int i0 = std::min(static_cast<int>(x), n - 1);
+        return std::pair<int, int>(i0, x > float(i0) ? std::min(i0 + 1, n - 1) : i0);
+    };
+    const auto [f0, f1] = reach(a);
+    const auto [b0, b1] = twoD ? reach(b) : std::pair<int, int>(0, 0);
+    for (int f : {f0, f1})
+        for (int bb : {b0, b1})
+            if (table[std::size_t(bb) * std::size_t(n) + std::size_t(f)].w > 0.0f) return true;
+    return false;
+}
+
+TEST(VisibleValues, CoverEverySampleTheTablesShow) {
+    // Samples and slabs between values a and b that the filtered table gives
+    // opacity are reported visible, for both classifications. The
+    // pre-integrated table resamples the function at coarser entries, so its
+    // slabs reach values the function's own entries do not: checking them
+    // against the function's entries misses some (the last expectation).
+    const std::vector<TransferFunction> functions{band(100.0, 104.0), band(40.0, 200.0)};
+    for (const TransferFunction& tf : functions) {
+        const std::vector<glm::vec4> table = render::tabulateTransfer(tf, kWindow);
+        const int n = render::kPreintegrationSize;
+        const std::vector<glm::vec4> slabs = render::preintegrate(table, 1.0, 1.0, n);
+        const render::VisibleValues post({&tf}, kWindow, false), pre({&tf}, kWindow, true);
+        int missedByPost = 0;
+        const int steps = 2000;
+        for (int i = 0; i <= steps; ++i) {
+            const float a = float(i) / float(steps);
+            if (tableShows(table, render::kTransferTableSize, false, a, a)) {
+                EXPECT_TRUE(post.anyIn(a, a)) << a;
+            }
+            for (int j = std::max(0, i - 40); j <= std::min(steps, i + 40); ++j) {
+                const float b = float(j) / float(steps);
+                if (!tableShows(slabs, n, true, a, b)) continue;
+                EXPECT_TRUE(pre.anyIn(std::min(a, b), std::max(a, b))) << a << ", " << b;
+                missedByPost += post.anyIn(std::min(a, b), std::max(a, b)) ? 0 : 1;
+            }
+        }
+        if (&tf == &functions[0]) {
+            EXPECT_GT(missedByPost, 0) << "the narrow band must need the coarser table's bins";
+        }
+    }
+}
+
+// Whether every sample in each empty cell, and every slab from it up to
+// `reach` voxels along each axis, is transparent; counts the failures.
+int transparencyViolations(const Volume& v, const render::RayCells& cells,
+                           const render::VisibleValues& visible, double reach) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> unit(0.0, 1.0), offset(-reach, reach);
+    int violations = 0;
+    for (int cz = 0; cz < cells.cells.z; ++cz)
+        for (int cy = 0; cy < cells.cells.y; ++cy)
+            for (int cx = 0; cx < cells.cells.x; ++cx) {
+                const glm::ivec3 c(cx, cy, cz);
+                if (cells.flags[std::size_t(cx) +
+                                std::size_t(cells.cells.x) * (cy + std::size_t(cells.cells.y) * cz)])
+                    continue;
+                for (int k = 0; k < 200; ++k) {
+                    // A point of the cell: voxel coordinates [4c - 0.5, 4c + 3.5).
+                    const glm::dvec3 p =
+                        glm::dvec3(c * kRayCellVoxels) - 0.5 +
+                        glm::dvec3(unit(rng), unit(rng), unit(rng)) * double(kRayCellVoxels);
+                    const glm::dvec3 q = p + glm::dvec3(offset(rng), offset(rng), offset(rng));
+                    const float a = sampleAt(v, p), b = sampleAt(v, q);
+                    violations += visible.anyIn(std::min(a, b), std::max(a, b)) ? 1 : 0;
+                }
+            }
+    return violations;
+}
+
+TEST(RayCells, EmptyCellsHoldOnlyTransparentSamplesAndSlabs) {
+    const Volume v = blobs();
+    for (const TransferFunction& tf : {band(90.0, 150.0), band(30.0, 80.0), band(150.0, 255.0)}) {
+        const render::VisibleValues visible({&tf}, kWindow, true);
+        for (int margin : {0, 1, 2, 3}) {
+            const render::RayCells cells = render::rayCells(v, kWindow, visible, margin);
+            EXPECT_EQ(transparencyViolations(v, cells, visible, margin + 0.5), 0)
+                << "margin " << margin;
+            // The same check sees a margin too small for the slabs.
+            if (margin == 2) {
+                EXPECT_GT(transparencyViolations(v, render::rayCells(v, kWindow, visible, 0),
+                                                 visible, margin + 0.5),
+                          0);
+            }
+        }
+    }
+}
+
+TEST(RayCells, TheMarginCoversTheSlab) {
+    // A slab of L voxels needs m + 0.5 >= L, and no more.
+    for (double slab : {0.0, 0.3, 0.5, 0.51, 1.0, 1.08, 1.5, 2.2, 6.0}) {
+        const int m = render::rayCellMargin(slab);
+        EXPECT_GE(m + 0.5, slab) << slab;
+        EXPECT_LT(m - 0.5, std::max(slab, 0.5)) << slab;
+    }
+}
+
+TEST(RayCells, FlagEachCellByTheValuesItsSamplesRead) {
+    // Against a direct computation: the range over the cell's voxels, one more
+    // on each side and the margin, clamped to the volume.
+    const Volume v = blobs();
+    const TransferFunction tf = band(90.0, 150.0);
+    const render::VisibleValues visible({&tf}, kWindow, false);
+    for (int margin : {0, 2, 5}) {
+        const render::RayCells cells = render::rayCells(v, kWindow, visible, margin);
+        ASSERT_EQ(cells.cells, (v.dims + kRayCellVoxels - 1) / kRayCellVoxels);
+        int occupied = 0;
+        glm::ivec3 lo(1 << 20), hi(0);
+        for (int cz = 0; cz < cells.cells.z; ++cz)
+            for (int cy = 0; cy < cells.cells.y; ++cy)
+                for (int cx = 0; cx < cells.cells.x; ++cx) {
+                    const glm::ivec3 c(cx, cy, cz);
+                    const glm::ivec3 first = glm::max(c * kRayCellVoxels - 1 - margin, 0);
+                    const glm::ivec3 last =
+                        glm::min(c * kRayCellVoxels + kRayCellVoxels + margin, v.dims - 1);
+                    float a = 1.0f, b = 0.0f;
+                    for (int z = first.z; z <= last.z; ++z)
+                        for (int y = first.y; y <= last.y; ++y)
+                            for (int x = first.x; x <= last.x; ++x) {
+                                const float value = float(v.value(x, y, z) / 255.0);
+                                a = std::min(a, value);
+                                b = std::max(b, value);
+                            }
+                    const bool expected = visible.anyIn(a, b);
+                    const bool flagged =
+                        cells.flags[std::size_t(cx) +
+                                    std::size_t(cells.cells.x) * (cy + std::size_t(cells.cells.y) * cz)];
+                    EXPECT_EQ(flagged, expected) << "cell " << cx << " " << cy << " " << cz;
+                    if (expected) {
+                        ++occupied;
+                        lo = glm::min(lo, c);
+                        hi = glm::max(hi, c + 1);
+                    }
+                }
+        const int total = cells.cells.x * cells.cells.y * cells.cells.z;
+        EXPECT_GT(occupied, 0);
+        EXPECT_LT(occupied, margin == 0 ? total / 2 : total) << "mostly air";
+        EXPECT_EQ(cells.lo, lo);
+        EXPECT_EQ(cells.hi, hi);
+        // Each cell's distance: the chessboard distance to the nearest occupied cell.
+        const glm::ivec3 n = cells.cells;
+        for (std::size_t i = 0; i < cells.flags.size(); ++i) {
+            const glm::ivec3 c(int(i) % n.x, int(i) / n.x % n.y, int(i) / (n.x * n.y));
+            int nearest = 255;
+            for (std::size_t j = 0; j < cells.flags.size(); ++j) {
+                if (!cells.flags[j]) continue;
+                const glm::ivec3 d =
+                    glm::abs(glm::ivec3(int(j) % n.x, int(j) / n.x % n.y, int(j) / (n.x * n.y)) - c);
+                nearest = std::min(nearest, std::max(d.x, std::max(d.y, d.z)));
+            }
+            ASSERT_EQ(int(cells.distance[i]), nearest) << "cell " << c.x << " " << c.y << " " << c.z;
+        }
+    }
+    // Nothing visible: no cell, and empty bounds.
+    const TransferFunction none = band(250.0, 254.0);
+    const render::RayCells empty =
+        render::rayCells(v, kWindow, render::VisibleValues({&none}, kWindow, false), 2);
+    EXPECT_EQ(std::count(empty.flags.begin(), empty.flags.end(), uint8_t(1)), 0);
+    EXPECT_EQ(std::count(empty.distance.begin(), empty.distance.end(), uint8_t(255)),
+              std::ptrdiff_t(empty.distance.size()));
+    EXPECT_EQ(empty.lo, empty.hi);
+}
+
+} // namespace
+} // namespace cutaway::test
