@@ -4,35 +4,11 @@
 #include "render/transfer_table.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <tuple>
 
 namespace cutaway::render {
 namespace {
-
-struct Range {
-    float lo = 1.0f, hi = 0.0f; // empty until a value arrives
-};
-
-// Each brick's value range, normalized over the window and clamped to [0, 1].
-std::vector<Range> brickRanges(const Volume& scan, glm::ivec3 bricks, bake::ValueWindow window) {
-    std::vector<Range> ranges(std::size_t(bricks.x) * bricks.y * bricks.z);
-    const double scale = 1.0 / (window.hi - window.lo);
-    for (int z = 0; z < scan.dims.z; ++z) {
-        for (int y = 0; y < scan.dims.y; ++y) {
-            Range* row = &ranges[std::size_t(bricks.x) *
-                                 (y / kBrickVoxels + std::size_t(bricks.y) * (z / kBrickVoxels))];
-            std::size_t i = scan.index(0, y, z);
-            for (int x = 0; x < scan.dims.x; ++x, ++i) {
-                const float v =
-                    static_cast<float>(std::clamp((scan.value(i) - window.lo) * scale, 0.0, 1.0));
-                Range& r = row[x / kBrickVoxels];
-                r.lo = std::min(r.lo, v);
-                r.hi = std::max(r.hi, v);
-            }
-        }
-    }
-    return ranges;
-}
 
 // The summed-area table of occ.flags.
 void fillSums(BrickOccupancy& occ) {
@@ -54,6 +30,56 @@ void fillSums(BrickOccupancy& occ) {
 }
 
 } // namespace
+
+std::vector<ValueSpan> cellRanges(const Volume& scan, bake::ValueWindow window, int cellVoxels,
+                                  int extra) {
+    const int k = cellVoxels;
+    const glm::ivec3 n = (scan.dims + (k - 1)) / k;
+    // The range over a cell's reach is separable: each row's values reduced
+    // over the cells' reach along x, those rows over the reach along y, the
+    // slices over z. Every voxel falls in the reach of a few cells at most.
+    std::vector<ValueSpan> grid(std::size_t(n.x) * n.y * n.z), slice(std::size_t(n.x) * n.y);
+    std::vector<float> row(std::size_t(scan.dims.x));
+    std::vector<ValueSpan> rowSpans(std::size_t(n.x));
+    const double scale = 1.0 / (window.hi - window.lo);
+    // The cells whose reach includes voxel i: from floor((i - extra) / k) to
+    // floor((i + extra) / k) (the first rounded down below zero, then clamped).
+    const auto cellsOf = [&](int i, int cells) {
+        const int shift = extra + 1; // keeps the division's operand positive
+        const int lo = (i - extra + shift * k) / k - shift;
+        return std::pair<int, int>(std::max(lo, 0), std::min(cells - 1, (i + extra) / k));
+    };
+    for (int z = 0; z < scan.dims.z; ++z) {
+        std::fill(slice.begin(), slice.end(), ValueSpan{});
+        for (int y = 0; y < scan.dims.y; ++y) {
+            const std::size_t base = scan.index(0, y, z);
+            for (int x = 0; x < scan.dims.x; ++x)
+                row[std::size_t(x)] = static_cast<float>(
+                    std::clamp((scan.value(base + std::size_t(x)) - window.lo) * scale, 0.0, 1.0));
+            for (int cx = 0; cx < n.x; ++cx) {
+                ValueSpan r;
+                const int last = std::min(cx * k + k - 1 + extra, scan.dims.x - 1);
+                for (int x = std::max(cx * k - extra, 0); x <= last; ++x)
+                    r.add(row[std::size_t(x)]);
+                rowSpans[std::size_t(cx)] = r;
+            }
+            const auto [cy0, cy1] = cellsOf(y, n.y);
+            for (int cy = cy0; cy <= cy1; ++cy)
+                for (int cx = 0; cx < n.x; ++cx)
+                    slice[std::size_t(cx) + std::size_t(n.x) * std::size_t(cy)].add(
+                        rowSpans[std::size_t(cx)]);
+        }
+        const auto [cz0, cz1] = cellsOf(z, n.z);
+        for (int cz = cz0; cz <= cz1; ++cz)
+            for (std::size_t i = 0; i < slice.size(); ++i)
+                grid[i + slice.size() * std::size_t(cz)].add(slice[i]);
+    }
+    return grid;
+}
+
+int slabMargin(double slabVoxels) {
+    return std::max(0, static_cast<int>(std::ceil(slabVoxels - 0.5)));
+}
 
 VisibleValues::VisibleValues(const std::vector<const TransferFunction*>& transfers,
                              bake::ValueWindow window, bool preintegrated) {
@@ -86,34 +112,17 @@ bool VisibleValues::anyIn(float lo, float hi) const {
 }
 
 BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
-                              const VisibleValues& visible) {
-    const glm::ivec3 bricks = (scan.dims + (kBrickVoxels - 1)) / kBrickVoxels;
-    const std::vector<Range> ranges = brickRanges(scan, bricks, window);
-    const auto at = [&](int x, int y, int z) {
-        return std::size_t(x) + std::size_t(bricks.x) * (y + std::size_t(bricks.y) * z);
-    };
+                              const VisibleValues& visible, int marginVoxels) {
     BrickOccupancy occ;
-    occ.bricks = bricks;
+    occ.bricks = (scan.dims + (kBrickVoxels - 1)) / kBrickVoxels;
     occ.box = box;
     occ.brickMm = double(kBrickVoxels) * scan.spacing;
-    std::vector<uint8_t>& occupied = occ.flags;
-    occupied.assign(ranges.size(), 0);
-    for (int z = 0; z < bricks.z; ++z)
-        for (int y = 0; y < bricks.y; ++y)
-            for (int x = 0; x < bricks.x; ++x) {
-                Range r;
-                for (int dz = std::max(z - 1, 0); dz <= std::min(z + 1, bricks.z - 1); ++dz)
-                    for (int dy = std::max(y - 1, 0); dy <= std::min(y + 1, bricks.y - 1); ++dy)
-                        for (int dx = std::max(x - 1, 0); dx <= std::min(x + 1, bricks.x - 1);
-                             ++dx) {
-                            const Range& n = ranges[at(dx, dy, dz)];
-                            r.lo = std::min(r.lo, n.lo);
-                            r.hi = std::max(r.hi, n.hi);
-                        }
-                if (r.lo > r.hi) continue;
-                occupied[at(x, y, z)] = visible.anyIn(r.lo, r.hi) ? 1 : 0;
-            }
-
+    occ.marginVoxels = marginVoxels;
+    const std::vector<ValueSpan> spans = cellRanges(scan, window, kBrickVoxels, 1 + marginVoxels);
+    occ.flags.resize(spans.size());
+    std::transform(spans.begin(), spans.end(), occ.flags.begin(), [&](const ValueSpan& r) {
+        return uint8_t(r.lo <= r.hi && visible.anyIn(r.lo, r.hi) ? 1 : 0);
+    });
     fillSums(occ);
     return occ;
 }

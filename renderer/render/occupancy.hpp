@@ -1,17 +1,21 @@
 #pragma once
 // Empty-space skipping for slicing (docs/performance.md). The volume is cut
 // into bricks of kBrickVoxels^3; a brick is occupied when some transfer
-// function gives opacity to a value between the smallest and largest value of
-// the brick and its 26 neighbours (so trilinear samples and pre-integrated
-// slabs up to a brick long that reach into it are covered). Occupied bricks
-// are merged into boxes (runs along x, then equal runs along y), and the
-// volume's background proxy becomes those boxes: the slices' polygons cover
-// only where something can show, and empty air is never rasterized.
+// function gives opacity to a value between the smallest and largest voxel
+// that a sample in the brick, or a slab that starts there, can read: the
+// brick's voxels, one more on every side (trilinear filtering) and a margin
+// of m more, which covers slabs up to m + 0.5 voxels long along each axis (a
+// sample lies up to half a voxel inside the outermost voxel centres).
+// Occupied bricks are merged into boxes (runs along x, then equal runs along
+// y), and the volume's background proxy becomes those boxes: the slices'
+// polygons cover only where something can show, and empty air is never
+// rasterized. The ray caster's finer cells (ray_cells.hpp) work the same way.
 #include "bake/volume_upload.hpp"
 #include "render/camera.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +41,29 @@ private:
     std::vector<int> m_upTo; ///< visible bins in [0, i)
 };
 
+/// The smallest and largest of some normalized values (lo > hi: none).
+struct ValueSpan {
+    float lo = 1.0f, hi = 0.0f;
+    void add(float v) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+    void add(const ValueSpan& s) {
+        lo = std::min(lo, s.lo);
+        hi = std::max(hi, s.hi);
+    }
+};
+
+/// Per cell of `cellVoxels`^3 (x fastest; the last ones partial), the span of
+/// the values normalized over `window` (clamped to [0, 1]) of the voxels
+/// within `extra` of the cell, clamped to the volume.
+std::vector<ValueSpan> cellRanges(const Volume& scan, bake::ValueWindow window, int cellVoxels,
+                                  int extra);
+
+/// The smallest margin m (voxels) that covers slabs `slabVoxels` long along
+/// each axis: m + 0.5 >= slabVoxels.
+int slabMargin(double slabVoxels);
+
 /// Cells [lo, hi) of a grid.
 struct CellRun {
     glm::ivec3 lo, hi;
@@ -53,6 +80,7 @@ struct BrickOccupancy {
     Box box;                    ///< the volume's box in the world
     glm::dvec3 brickMm{0.0};    ///< a brick's extent in mm
     std::vector<uint8_t> flags; ///< per brick, x fastest: 1 occupied
+    int marginVoxels = 0;       ///< slabs up to marginVoxels + 0.5 voxels long are covered
     /// Summed-area table over the bricks, (bricks + 1)^3 entries: anyIn in O(1).
     std::vector<uint32_t> sums;
 
@@ -64,9 +92,10 @@ struct BrickOccupancy {
 };
 
 /// The occupancy of `scan` (whose box in the world is `box`), for values
-/// normalized over `window`, where `visible` says which can show.
+/// normalized over `window`, where `visible` says which can show, with a
+/// margin of `marginVoxels` for slabs.
 BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
-                              const VisibleValues& visible);
+                              const VisibleValues& visible, int marginVoxels);
 
 /// Every brick occupied: for a volume whose values are not on the host.
 BrickOccupancy fullOccupancy(const Box& box);

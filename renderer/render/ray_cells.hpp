@@ -1,16 +1,12 @@
 #pragma once
 // Empty-space skipping for the ray caster (docs/performance.md). The volume is
 // cut into cells of kRayCellVoxels^3; a cell is empty when the classification
-// gives no opacity to any value between the smallest and largest voxel that a
-// sample in the cell, or a slab that starts there, can read: the cell's
-// voxels, one more on every side (trilinear filtering) and a margin of m more,
-// which covers slabs up to m + 0.5 voxels long along each axis (a sample lies
-// up to half a voxel inside the outermost voxel centres). A ray at a sample in an empty cell may jump to its first
-// sample outside the cell: every sample and slab it passes over is
-// transparent. Finer and tighter than the slicing proxies' bricks
-// (occupancy.hpp), which must cover slabs a brick long and stay few polygons.
-// So that rays cross open air in a few long jumps instead of one per cell,
-// each empty cell also carries its chessboard distance r to the nearest
+// gives no opacity to any value that a sample in the cell, or a slab up to the
+// margin long that starts there, can read (as for the bricks, occupancy.hpp). A ray at a sample in
+// an empty cell may jump to its first sample outside the cell: every sample and slab it passes over
+// is transparent. Finer and tighter than the slicing proxies' bricks (occupancy.hpp), which must
+// cover slabs a brick long and stay few polygons. So that rays cross open air in a few long jumps
+// instead of one per cell, each empty cell also carries its chessboard distance r to the nearest
 // occupied cell: the cube of cells within r - 1 of it is empty, and a ray may
 // jump to that cube's wall.
 #include "render/camera.hpp"
@@ -20,12 +16,9 @@ namespace cutaway::render {
 
 constexpr int kRayCellVoxels = 4;
 
-/// The smallest margin that covers slabs `slabVoxels` long (along any axis).
-int rayCellMargin(double slabVoxels);
-
 struct RayCells {
     glm::ivec3 cells{0};
-    int marginVoxels = 0; ///< m: slabs up to m + 0.5 voxels long are covered
+    int marginVoxels = 0;       ///< m: slabs up to m + 0.5 voxels long are covered
     std::vector<uint8_t> flags; ///< per cell, x fastest: 1 occupied
     /// Per cell: 0 when occupied, else the chessboard distance (in cells, at
     /// most 255) to the nearest occupied cell; 255 everywhere when none is.

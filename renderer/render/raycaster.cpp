@@ -64,7 +64,7 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant) {
 
 void Raycaster::prepareCells(const GpuVolume& volume, const VisibleValues& visible,
                              uint64_t occupancySerial, double slabMm) {
-    const int margin = rayCellMargin(slabMm / volume.smallestSpacing());
+    const int margin = slabMargin(slabMm / volume.smallestSpacing());
     const std::pair<uint64_t, int> key(occupancySerial, margin);
     if (m_cells.distance.image && m_cells.key == key) return;
     m_cells.distance = {}; // freed before its successor is made

@@ -192,7 +192,8 @@ void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
 }
 
-const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuVolume& volume) {
+const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuVolume& volume,
+                                                  int marginVoxels) {
     std::vector<const TransferFunction*> transfers{&scene.transfer};
     if (volume.labels) {
         for (const LabelTransfer& t : scene.labelTransfers)
@@ -200,7 +201,7 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
     }
     const bool preintegrated = scene.render.classification == Classification::Preintegrated;
     std::vector<double> key{double(volume.serial), volume.window.lo, volume.window.hi,
-                            preintegrated ? 1.0 : 0.0};
+                            preintegrated ? 1.0 : 0.0, double(marginVoxels)};
     for (const TransferFunction* tf : transfers) {
         key.push_back(double(tf->points.size()));
         for (const TransferPoint& p : tf->points)
@@ -208,9 +209,9 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
     }
     if (key != m_occupiedKey) {
         m_visible.emplace(transfers, volume.window, preintegrated);
-        m_occupancy = volume.scan
-                          ? brickOccupancy(*volume.scan, volume.box, volume.window, *m_visible)
-                          : fullOccupancy(volume.box);
+        m_occupancy = volume.scan ? brickOccupancy(*volume.scan, volume.box, volume.window,
+                                                   *m_visible, marginVoxels)
+                                  : fullOccupancy(volume.box);
         m_occupied = m_occupancy.boxes();
         m_occupiedKey = std::move(key);
         ++m_occupancySerial;
@@ -341,14 +342,14 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
     // Proxies: each operator's deformed box, then the volume (the background).
     // An operator's box is a stencil-only proxy, its shader runs on its regions.
-    occupancyFor(scene, volume);
-    std::vector<Proxy> proxies;
-    m_roles.clear();
-    // How far along a ray the operator shader samples from a fragment: a slab,
+    // How far along a ray a fragment's slab reaches: the slice spacing,
     // longer by the obliquity of the frame's most oblique ray.
     const double tanX = cam.perspective ? 1.0 / std::abs(cam.proj[0][0]) : 0.0;
     const double tanY = cam.perspective ? 1.0 / std::abs(cam.proj[1][1]) : 0.0;
     const double reachMm = sliceMm * std::sqrt(1.0 + tanX * tanX + tanY * tanY) * 1.01;
+    occupancyFor(scene, volume, slabMargin(reachMm / volume.smallestSpacing()));
+    std::vector<Proxy> proxies;
+    m_roles.clear();
     const auto& ops = m_operators->operators();
     for (std::size_t i = 0; i < ops.size(); ++i) {
         const GpuOperator& op = *ops[i];

@@ -62,7 +62,9 @@ private:
                       SliceVariant frame, std::size_t begin, std::size_t end);
     /// The volume's occupied bricks for this scene's transfer functions
     /// (render/occupancy.hpp), remade when those change.
-    const BrickOccupancy& occupancyFor(const Scene& scene, const GpuVolume& volume);
+    /// `marginVoxels`: for the frame's longest slab (slabMargin).
+    const BrickOccupancy& occupancyFor(const Scene& scene, const GpuVolume& volume,
+                                       int marginVoxels);
     /// Operator `index`'s regions (operatorRegions), remade when it or the
     /// occupancy changes.
     const std::vector<operators::LocalBox>& regionsFor(std::size_t index, const GpuOperator& op,

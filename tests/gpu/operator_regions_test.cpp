@@ -86,7 +86,8 @@ TEST(OperatorRegions, CoverEveryPointWhoseSampleCanShow) {
     const render::BrickOccupancy occupancy = render::brickOccupancy(
         volume, box, window,
         render::VisibleValues({&base.transfer}, window,
-                              base.render.classification == Classification::Preintegrated));
+                              base.render.classification == Classification::Preintegrated),
+        1);
     std::mt19937 rng(7);
     for (const char* op : kOperators) {
         const OperatorSpec spec = sceneWith(op, "").operators.at(0);

@@ -126,8 +126,8 @@ int transparencyViolations(const Volume& v, const render::RayCells& cells,
         for (int cy = 0; cy < cells.cells.y; ++cy)
             for (int cx = 0; cx < cells.cells.x; ++cx) {
                 const glm::ivec3 c(cx, cy, cz);
-                if (cells.flags[std::size_t(cx) +
-                                std::size_t(cells.cells.x) * (cy + std::size_t(cells.cells.y) * cz)])
+                if (cells.flags[std::size_t(cx) + std::size_t(cells.cells.x) *
+                                                      (cy + std::size_t(cells.cells.y) * cz)])
                     continue;
                 for (int k = 0; k < 200; ++k) {
                     // A point of the cell: voxel coordinates [4c - 0.5, 4c + 3.5).
@@ -163,7 +163,7 @@ TEST(RayCells, EmptyCellsHoldOnlyTransparentSamplesAndSlabs) {
 TEST(RayCells, TheMarginCoversTheSlab) {
     // A slab of L voxels needs m + 0.5 >= L, and no more.
     for (double slab : {0.0, 0.3, 0.5, 0.51, 1.0, 1.08, 1.5, 2.2, 6.0}) {
-        const int m = render::rayCellMargin(slab);
+        const int m = render::slabMargin(slab);
         EXPECT_GE(m + 0.5, slab) << slab;
         EXPECT_LT(m - 0.5, std::max(slab, 0.5)) << slab;
     }
@@ -197,8 +197,8 @@ TEST(RayCells, FlagEachCellByTheValuesItsSamplesRead) {
                             }
                     const bool expected = visible.anyIn(a, b);
                     const bool flagged =
-                        cells.flags[std::size_t(cx) +
-                                    std::size_t(cells.cells.x) * (cy + std::size_t(cells.cells.y) * cz)];
+                        cells.flags[std::size_t(cx) + std::size_t(cells.cells.x) *
+                                                          (cy + std::size_t(cells.cells.y) * cz)];
                     EXPECT_EQ(flagged, expected) << "cell " << cx << " " << cy << " " << cz;
                     if (expected) {
                         ++occupied;
@@ -218,11 +218,12 @@ TEST(RayCells, FlagEachCellByTheValuesItsSamplesRead) {
             int nearest = 255;
             for (std::size_t j = 0; j < cells.flags.size(); ++j) {
                 if (!cells.flags[j]) continue;
-                const glm::ivec3 d =
-                    glm::abs(glm::ivec3(int(j) % n.x, int(j) / n.x % n.y, int(j) / (n.x * n.y)) - c);
+                const glm::ivec3 d = glm::abs(
+                    glm::ivec3(int(j) % n.x, int(j) / n.x % n.y, int(j) / (n.x * n.y)) - c);
                 nearest = std::min(nearest, std::max(d.x, std::max(d.y, d.z)));
             }
-            ASSERT_EQ(int(cells.distance[i]), nearest) << "cell " << c.x << " " << c.y << " " << c.z;
+            ASSERT_EQ(int(cells.distance[i]), nearest)
+                << "cell " << c.x << " " << c.y << " " << c.z;
         }
     }
     // Nothing visible: no cell, and empty bounds.
