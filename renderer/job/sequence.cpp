@@ -117,6 +117,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             p.event.seconds = secondsSince(p.start);
             ++summary.rendered;
             summary.frameSeconds.push_back(p.event.seconds);
+            summary.doneSeconds.push_back(secondsSince(runStart));
         } catch (const Error& e) {
             p.event.kind = FrameEvent::Kind::Failed;
             p.event.error = e.what();

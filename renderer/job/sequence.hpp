@@ -69,6 +69,10 @@ struct SequenceSummary {
     bool resourceExceeded = false; ///< a device limit or the memory budget stopped the run
     int volumeUploads = 0; ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
     std::vector<double> frameSeconds; ///< of rendered frames
+    /// When each rendered frame's files were written, in seconds since the run
+    /// began: the rate between the first and the last is the steady one, after
+    /// the first frame's loading and bakes.
+    std::vector<double> doneSeconds;
     double totalSeconds = 0.0;
 };
 

@@ -5,6 +5,7 @@
 #include "job/sequence.hpp"
 #include "scene/scene.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <gtest/gtest.h>
 
@@ -33,6 +34,11 @@ TEST_F(GpuTest, VolumeIsUploadedOncePerSequence) {
         "keys": [ { "frame": 0, "value": 0 }, { "frame": 4, "value": 360 } ] })");
     EXPECT_EQ(turn.rendered, 4);
     EXPECT_EQ(turn.volumeUploads, 1);
+    // Each rendered frame's completion, in order, within the run.
+    ASSERT_EQ(turn.doneSeconds.size(), 4u);
+    EXPECT_GT(turn.doneSeconds.front(), 0.0);
+    EXPECT_TRUE(std::is_sorted(turn.doneSeconds.begin(), turn.doneSeconds.end()));
+    EXPECT_LE(turn.doneSeconds.back(), turn.totalSeconds);
     const auto windowed = run(ctx(), R"({ "target": "/volume/window",
         "keys": [ { "frame": 0, "value": [0, 255] }, { "frame": 3, "value": [0, 120] } ] })");
     EXPECT_EQ(windowed.rendered, 4);
