@@ -117,7 +117,6 @@ BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWin
     occ.bricks = (scan.dims + (kBrickVoxels - 1)) / kBrickVoxels;
     occ.box = box;
     occ.brickMm = double(kBrickVoxels) * scan.spacing;
-    occ.marginVoxels = marginVoxels;
     const std::vector<ValueSpan> spans = cellRanges(scan, window, kBrickVoxels, 1 + marginVoxels);
     occ.flags.resize(spans.size());
     std::transform(spans.begin(), spans.end(), occ.flags.begin(), [&](const ValueSpan& r) {

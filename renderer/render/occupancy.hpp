@@ -80,7 +80,6 @@ struct BrickOccupancy {
     Box box;                    ///< the volume's box in the world
     glm::dvec3 brickMm{0.0};    ///< a brick's extent in mm
     std::vector<uint8_t> flags; ///< per brick, x fastest: 1 occupied
-    int marginVoxels = 0;       ///< slabs up to marginVoxels + 0.5 voxels long are covered
     /// Summed-area table over the bricks, (bricks + 1)^3 entries: anyIn in O(1).
     std::vector<uint32_t> sums;
 

@@ -46,7 +46,6 @@ std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>
 RayCells rayCells(const Volume& scan, bake::ValueWindow window, const VisibleValues& visible,
                   int marginVoxels) {
     RayCells result;
-    result.marginVoxels = marginVoxels;
     const glm::ivec3 n = (scan.dims + (kRayCellVoxels - 1)) / kRayCellVoxels;
     result.cells = n;
     const std::vector<ValueSpan> grid = cellRanges(scan, window, kRayCellVoxels, 1 + marginVoxels);

@@ -18,7 +18,6 @@ constexpr int kRayCellVoxels = 4;
 
 struct RayCells {
     glm::ivec3 cells{0};
-    int marginVoxels = 0;       ///< m: slabs up to m + 0.5 voxels long are covered
     std::vector<uint8_t> flags; ///< per cell, x fastest: 1 occupied
     /// Per cell: 0 when occupied, else the chessboard distance (in cells, at
     /// most 255) to the nearest occupied cell; 255 everywhere when none is.

@@ -30,10 +30,10 @@ public:
         VkImageView values, gradients, transfer, classes;
     };
     /// Remakes the empty-space cells (ray_cells.hpp) the rays step over when
-    /// `occupancySerial` (what `visible` was made for) or the margin that
-    /// slabs up to `slabMm` long need has changed. Call before bind().
+    /// `occupancySerial` (what `visible` was made for) or the margin for the
+    /// frame's slabs (slabMargin) has changed. Call before bind().
     void prepareCells(const GpuVolume& volume, const VisibleValues& visible,
-                      uint64_t occupancySerial, double slabMm);
+                      uint64_t occupancySerial, int marginVoxels);
     gpu::DescriptorSet bind(const Inputs& inputs, const gpu::Image& target) const;
 
     /// Records the pass: `target` (RGBA32F, storage) goes from UNDEFINED to

@@ -347,7 +347,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const double tanX = cam.perspective ? 1.0 / std::abs(cam.proj[0][0]) : 0.0;
     const double tanY = cam.perspective ? 1.0 / std::abs(cam.proj[1][1]) : 0.0;
     const double reachMm = sliceMm * std::sqrt(1.0 + tanX * tanX + tanY * tanY) * 1.01;
-    occupancyFor(scene, volume, slabMargin(reachMm / volume.smallestSpacing()));
+    const int margin = slabMargin(reachMm / volume.smallestSpacing()); // for empty space
+    occupancyFor(scene, volume, margin);
     std::vector<Proxy> proxies;
     m_roles.clear();
     const auto& ops = m_operators->operators();
@@ -454,7 +455,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     if (raycast) {
-        Image image = renderRaycast(cam, volume, transfer, variant, reachMm);
+        Image image = renderRaycast(cam, volume, transfer, variant, margin);
         compositeUnder(image, scene.render.background);
         return image;
     }
@@ -555,7 +556,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
 
 Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                                    const gpu::Image& transfer, const SliceVariant& variant,
-                                   double slabMm) {
+                                   int marginVoxels) {
     const uint32_t width = m_color.extent.width, height = m_color.extent.height;
     if (!m_rayTarget.image || m_rayTarget.extent.width != width ||
         m_rayTarget.extent.height != height) {
@@ -565,7 +566,7 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
         m_rayReadback = gpu::createBuffer(m_ctx, 16ull * width * height,
                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
-    m_raycaster->prepareCells(volume, *m_visible, m_occupancySerial, slabMm);
+    m_raycaster->prepareCells(volume, *m_visible, m_occupancySerial, marginVoxels);
     const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
                                    volume.values.view.get(), volume.gradients.view.get(),
                                    transfer.view.get(),      m_classes.view.get()};

@@ -70,9 +70,9 @@ private:
     const std::vector<operators::LocalBox>& regionsFor(std::size_t index, const GpuOperator& op,
                                                        double reachMm);
     /// render.method "raycast": the frame by ray casting, over nothing.
-    /// `slabMm`: the longest slab of the frame (its most oblique ray's).
+    /// `marginVoxels`: for the frame's longest slab (slabMargin).
     Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
-                        const gpu::Image& transfer, const SliceVariant& variant, double slabMm);
+                        const gpu::Image& transfer, const SliceVariant& variant, int marginVoxels);
     static void compositeUnder(Image& image, glm::vec4 background);
     /// The pipeline of `variant`, made on first use (a few per scene).
     VkPipeline pipelineFor(const SliceVariant& variant);
