@@ -1,8 +1,6 @@
 #include "render/ray_cells.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <limits>
 
 namespace cutaway::render {
 namespace {

@@ -9,7 +9,6 @@
 // instead of one per cell, each empty cell also carries its chessboard distance r to the nearest
 // occupied cell: the cube of cells within r - 1 of it is empty, and a ray may
 // jump to that cube's wall.
-#include "render/camera.hpp"
 #include "render/occupancy.hpp"
 
 namespace cutaway::render {
