@@ -6,6 +6,7 @@
 #include "job/render_job.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/feature_fields.hpp"
+#include "render/ray_cells.hpp"
 #include "scene/scene.hpp"
 #include "vtk_spec.hpp"
 
@@ -66,6 +67,25 @@ nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
             fields.fieldFor(s.operators.at(0), gv);
         }));
     };
+    // Empty space: the span pass over the scan (once per volume, window and
+    // margin; the margin of d = 1) and what a new transfer function costs
+    // after it: the bricks' and cells' flags and the cells' distances.
+    const int margin = render::slabMargin(1.0);
+    render::SpanGrid cellSpans, brickSpans;
+    bakes["value_spans_ms"] = medianMs(o.bakeRepeats, [&] {
+        cellSpans = render::spanGrid(scan, window, render::kRayCellVoxels, 1 + margin);
+        brickSpans = render::coarsened(cellSpans);
+    });
+    bakes["classify_ms"] = medianMs(o.bakeRepeats, [&] {
+        std::vector<const TransferFunction*> transfers{&base.transfer};
+        if (labels)
+            for (const LabelTransfer& t : base.labelTransfers)
+                transfers.push_back(&t.transfer);
+        const render::VisibleValues visible(
+            transfers, window, base.render.classification == Classification::Preintegrated);
+        (void)render::brickOccupancy(brickSpans, gv.box, scan.spacing, visible);
+        (void)render::rayCells(cellSpans, visible);
+    });
     bakes["distance_field_ms"] = featureMs("surface");
     bakes["segment_mask_ms"] = featureMs("segment");
     if (!base.operators.empty()) {

@@ -77,6 +77,26 @@ std::vector<ValueSpan> cellRanges(const Volume& scan, bake::ValueWindow window, 
     return grid;
 }
 
+SpanGrid spanGrid(const Volume& scan, bake::ValueWindow window, int cellVoxels, int extra) {
+    return {(scan.dims + (cellVoxels - 1)) / cellVoxels, cellVoxels,
+            cellRanges(scan, window, cellVoxels, extra)};
+}
+
+SpanGrid coarsened(const SpanGrid& fine) {
+    SpanGrid coarse{(fine.cells + 1) / 2, 2 * fine.cellVoxels, {}};
+    const glm::ivec3 n = coarse.cells;
+    coarse.spans.resize(std::size_t(n.x) * n.y * n.z);
+    for (int z = 0; z < fine.cells.z; ++z)
+        for (int y = 0; y < fine.cells.y; ++y)
+            for (int x = 0; x < fine.cells.x; ++x)
+                coarse
+                    .spans[std::size_t(x / 2) +
+                           std::size_t(n.x) * (y / 2 + std::size_t(n.y) * (z / 2))]
+                    .add(fine.spans[std::size_t(x) + std::size_t(fine.cells.x) *
+                                                         (y + std::size_t(fine.cells.y) * z)]);
+    return coarse;
+}
+
 int slabMargin(double slabVoxels) {
     return std::max(0, static_cast<int>(std::ceil(slabVoxels - 0.5)));
 }
@@ -111,19 +131,25 @@ bool VisibleValues::anyIn(float lo, float hi) const {
     return m_upTo[std::size_t(end)] > m_upTo[std::size_t(first)];
 }
 
-BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
-                              const VisibleValues& visible, int marginVoxels) {
+BrickOccupancy brickOccupancy(const SpanGrid& bricks, const Box& box, glm::dvec3 spacing,
+                              const VisibleValues& visible) {
     BrickOccupancy occ;
-    occ.bricks = (scan.dims + (kBrickVoxels - 1)) / kBrickVoxels;
+    occ.bricks = bricks.cells;
     occ.box = box;
-    occ.brickMm = double(kBrickVoxels) * scan.spacing;
-    const std::vector<ValueSpan> spans = cellRanges(scan, window, kBrickVoxels, 1 + marginVoxels);
-    occ.flags.resize(spans.size());
-    std::transform(spans.begin(), spans.end(), occ.flags.begin(), [&](const ValueSpan& r) {
-        return uint8_t(r.lo <= r.hi && visible.anyIn(r.lo, r.hi) ? 1 : 0);
-    });
+    occ.brickMm = double(bricks.cellVoxels) * spacing;
+    occ.flags.resize(bricks.spans.size());
+    std::transform(bricks.spans.begin(), bricks.spans.end(), occ.flags.begin(),
+                   [&](const ValueSpan& r) {
+                       return uint8_t(r.lo <= r.hi && visible.anyIn(r.lo, r.hi) ? 1 : 0);
+                   });
     fillSums(occ);
     return occ;
+}
+
+BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
+                              const VisibleValues& visible, int marginVoxels) {
+    return brickOccupancy(spanGrid(scan, window, kBrickVoxels, 1 + marginVoxels), box, scan.spacing,
+                          visible);
 }
 
 BrickOccupancy fullOccupancy(const Box& box) {

@@ -60,6 +60,21 @@ struct ValueSpan {
 std::vector<ValueSpan> cellRanges(const Volume& scan, bake::ValueWindow window, int cellVoxels,
                                   int extra);
 
+/// cellRanges with the grid it spans. They depend on the scan, the window and
+/// the reach, not on the transfer functions: a new classification only
+/// re-flags the cells.
+struct SpanGrid {
+    glm::ivec3 cells{0};
+    int cellVoxels = 0;
+    std::vector<ValueSpan> spans;
+};
+SpanGrid spanGrid(const Volume& scan, bake::ValueWindow window, int cellVoxels, int extra);
+
+/// The grid of cells twice as large, each the union of its 2x2x2 cells'
+/// spans: what spanGrid gives at twice the size with the same extra (the
+/// reaches of two neighbouring cells are contiguous, clamped alike).
+SpanGrid coarsened(const SpanGrid& fine);
+
 /// The smallest margin m (voxels) that covers slabs `slabVoxels` long along
 /// each axis: m + 0.5 >= slabVoxels.
 int slabMargin(double slabVoxels);
@@ -90,9 +105,14 @@ struct BrickOccupancy {
     std::vector<Box> boxes() const;
 };
 
-/// The occupancy of `scan` (whose box in the world is `box`), for values
-/// normalized over `window`, where `visible` says which can show, with a
-/// margin of `marginVoxels` for slabs.
+/// The occupancy of the bricks whose spans (kBrickVoxels cells, reaching 1 +
+/// the slab margin) are `bricks`, in a volume whose box in the world is `box`
+/// with voxels `spacing` mm apart, where `visible` says which values can show.
+BrickOccupancy brickOccupancy(const SpanGrid& bricks, const Box& box, glm::dvec3 spacing,
+                              const VisibleValues& visible);
+
+/// The same from the scan, for values normalized over `window`, with a margin
+/// of `marginVoxels` for slabs.
 BrickOccupancy brickOccupancy(const Volume& scan, const Box& box, bake::ValueWindow window,
                               const VisibleValues& visible, int marginVoxels);
 

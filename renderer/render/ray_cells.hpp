@@ -14,6 +14,7 @@
 namespace cutaway::render {
 
 constexpr int kRayCellVoxels = 4;
+static_assert(kBrickVoxels == 2 * kRayCellVoxels, "bricks take their spans from the cells");
 
 struct RayCells {
     glm::ivec3 cells{0};
@@ -25,8 +26,12 @@ struct RayCells {
     glm::ivec3 lo{0}, hi{0};
 };
 
-/// The cells of `scan`, for values normalized over `window`, where `visible`
-/// says which can show, with a margin of `marginVoxels` voxels.
+/// The cells whose spans (kRayCellVoxels cells reaching 1 + the margin) are
+/// `spans`, where `visible` says which values can show.
+RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible);
+
+/// The same from the scan, for values normalized over `window`, with a margin
+/// of `marginVoxels` voxels.
 RayCells rayCells(const Volume& scan, bake::ValueWindow window, const VisibleValues& visible,
                   int marginVoxels);
 

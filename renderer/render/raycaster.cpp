@@ -62,16 +62,16 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant) {
     return found->second.get();
 }
 
-void Raycaster::prepareCells(const GpuVolume& volume, const VisibleValues& visible,
-                             uint64_t occupancySerial, int margin) {
+void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
+                             const VisibleValues& visible, uint64_t occupancySerial, int margin) {
     const std::pair<uint64_t, int> key(occupancySerial, margin);
     if (m_cells.distance.image && m_cells.key == key) return;
     m_cells.distance = {}; // freed before its successor is made
     // Without the scan on the host: one occupied cell, the whole box.
     RayCells cells{glm::ivec3(1), {1}, {0}, glm::ivec3(0), glm::ivec3(1)};
     glm::dvec3 cellMm = volume.box.hi - volume.box.lo;
-    if (volume.scan) {
-        cells = rayCells(*volume.scan, volume.window, visible, margin);
+    if (spans) {
+        cells = rayCells(*spans, visible);
         cellMm = double(kRayCellVoxels) * volume.spacing;
     }
     const glm::uvec3 n(cells.cells);

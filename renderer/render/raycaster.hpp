@@ -31,8 +31,10 @@ public:
     };
     /// Remakes the empty-space cells (ray_cells.hpp) the rays step over when
     /// `occupancySerial` (what `visible` was made for) or the margin for the
-    /// frame's slabs (slabMargin) has changed. Call before bind().
-    void prepareCells(const GpuVolume& volume, const VisibleValues& visible,
+    /// frame's slabs (slabMargin) has changed, from the cells' `spans`
+    /// (kRayCellVoxels, reaching 1 + the margin; null without the scan on the
+    /// host: one cell, the whole box). Call before bind().
+    void prepareCells(const GpuVolume& volume, const SpanGrid* spans, const VisibleValues& visible,
                       uint64_t occupancySerial, int marginVoxels);
     gpu::DescriptorSet bind(const Inputs& inputs, const gpu::Image& target) const;
 

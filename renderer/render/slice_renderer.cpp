@@ -5,6 +5,7 @@
 #include "render/label_classes.hpp"
 #include "render/occupancy.hpp"
 #include "render/preintegration.hpp"
+#include "render/ray_cells.hpp"
 #include "render/slice_pipeline.hpp"
 #include "render/slicer.hpp"
 #include "render/transfer_table.hpp"
@@ -207,11 +208,24 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
         for (const TransferPoint& p : tf->points)
             key.insert(key.end(), {p.value, double(p.alpha)});
     }
+    // The spans of values each cell and brick reaches: one pass over the scan
+    // per volume, window and margin; a new classification only re-flags them.
+    const std::vector<double> spanKey{double(volume.serial), volume.window.lo, volume.window.hi,
+                                      double(marginVoxels)};
+    if (spanKey != m_spanKey) {
+        m_cellSpans.reset();
+        m_brickSpans.reset();
+        if (volume.scan) {
+            m_cellSpans = spanGrid(*volume.scan, volume.window, kRayCellVoxels, 1 + marginVoxels);
+            m_brickSpans = coarsened(*m_cellSpans);
+        }
+        m_spanKey = spanKey;
+    }
     if (key != m_occupiedKey) {
         m_visible.emplace(transfers, volume.window, preintegrated);
-        m_occupancy = volume.scan ? brickOccupancy(*volume.scan, volume.box, volume.window,
-                                                   *m_visible, marginVoxels)
-                                  : fullOccupancy(volume.box);
+        m_occupancy = m_brickSpans
+                          ? brickOccupancy(*m_brickSpans, volume.box, volume.spacing, *m_visible)
+                          : fullOccupancy(volume.box);
         m_occupied = m_occupancy.boxes();
         m_occupiedKey = std::move(key);
         ++m_occupancySerial;
@@ -566,7 +580,8 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
         m_rayReadback = gpu::createBuffer(m_ctx, 16ull * width * height,
                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
-    m_raycaster->prepareCells(volume, *m_visible, m_occupancySerial, marginVoxels);
+    m_raycaster->prepareCells(volume, m_cellSpans ? &*m_cellSpans : nullptr, *m_visible,
+                              m_occupancySerial, marginVoxels);
     const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
                                    volume.values.view.get(), volume.gradients.view.get(),
                                    transfer.view.get(),      m_classes.view.get()};

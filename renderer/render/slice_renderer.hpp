@@ -90,6 +90,9 @@ private:
     std::unique_ptr<Raycaster> m_raycaster;
     gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
     gpu::Buffer m_rayReadback;
+    std::optional<SpanGrid> m_cellSpans;    ///< the ray caster's cells (null: no host scan)
+    std::optional<SpanGrid> m_brickSpans;   ///< the bricks', coarsened from the cells'
+    std::vector<double> m_spanKey;          ///< volume, window, margin
     std::optional<VisibleValues> m_visible; ///< what the frame's classification can show
     BrickOccupancy m_occupancy;
     std::vector<Box> m_occupied; ///< m_occupancy.boxes(): the volume's proxies

@@ -236,5 +236,72 @@ TEST(RayCells, FlagEachCellByTheValuesItsSamplesRead) {
     EXPECT_EQ(empty.lo, empty.hi);
 }
 
+TEST(SpanGrid, TwiceTheCellIsTheUnionOfItsEight) {
+    // Bricks take their spans from the ray caster's cells (one pass over the
+    // scan): exact, partial last cells and clamping included.
+    std::mt19937 rng(7);
+    for (const glm::ivec3 dims :
+         {glm::ivec3(29, 23, 34), glm::ivec3(9, 16, 5), glm::ivec3(1, 7, 8)}) {
+        Volume v = Volume::allocate(dims, VoxelType::U8);
+        for (std::byte& b : v.data)
+            b = std::byte(static_cast<uint8_t>(rng() % 256));
+        for (int extra : {1, 2, 3, 6}) {
+            const render::SpanGrid direct = render::spanGrid(v, kWindow, 8, extra);
+            const render::SpanGrid merged =
+                render::coarsened(render::spanGrid(v, kWindow, 4, extra));
+            ASSERT_EQ(merged.cells, direct.cells);
+            ASSERT_EQ(merged.cellVoxels, 8);
+            ASSERT_EQ(merged.spans.size(), direct.spans.size());
+            for (std::size_t i = 0; i < direct.spans.size(); ++i) {
+                EXPECT_EQ(merged.spans[i].lo, direct.spans[i].lo) << i << " extra " << extra;
+                EXPECT_EQ(merged.spans[i].hi, direct.spans[i].hi) << i << " extra " << extra;
+            }
+        }
+    }
+}
+
+TEST(RayCells, DistancesAreChessboardDistancesToTheNearestOccupiedCell) {
+    // Cells flagged by hand (a visible span or an invisible one), sparse and in
+    // lines, against the definition; far from every occupied cell it saturates.
+    const TransferFunction tf = band(90.0, 150.0);
+    const render::VisibleValues visible({&tf}, kWindow, false);
+    const render::ValueSpan shows{120.0f / 255.0f, 120.0f / 255.0f}, clear{0.0f, 0.0f};
+    std::mt19937 rng(11);
+    const glm::ivec3 n(37, 21, 300);
+    for (int layout = 0; layout < 3; ++layout) {
+        render::SpanGrid grid{n, kRayCellVoxels,
+                              std::vector<render::ValueSpan>(std::size_t(n.x) * n.y * n.z, clear)};
+        const auto index = [&](glm::ivec3 c) {
+            return std::size_t(c.x) + std::size_t(n.x) * (c.y + std::size_t(n.y) * c.z);
+        };
+        if (layout == 0)
+            for (int i = 0; i < 6; ++i)
+                grid.spans[index({int(rng() % n.x), int(rng() % n.y), int(rng() % 40)})] = shows;
+        if (layout == 1)
+            for (int x = 3; x < n.x; ++x)
+                grid.spans[index({x, n.y - 1 - x % n.y, 17})] = shows;
+        if (layout == 2) grid.spans[index({n.x - 1, 0, 0})] = shows;
+        const render::RayCells cells = render::rayCells(grid, visible);
+        std::vector<glm::ivec3> occupied;
+        for (std::size_t i = 0; i < grid.spans.size(); ++i)
+            if (cells.flags[i])
+                occupied.push_back({int(i) % n.x, int(i) / n.x % n.y, int(i) / (n.x * n.y)});
+        ASSERT_FALSE(occupied.empty());
+        int far = 0;
+        for (std::size_t i = 0; i < grid.spans.size(); ++i) {
+            const glm::ivec3 c(int(i) % n.x, int(i) / n.x % n.y, int(i) / (n.x * n.y));
+            int nearest = 255;
+            for (const glm::ivec3 o : occupied) {
+                const glm::ivec3 d = glm::abs(o - c);
+                nearest = std::min(nearest, std::max(d.x, std::max(d.y, d.z)));
+            }
+            far += nearest == 255 ? 1 : 0;
+            ASSERT_EQ(int(cells.distance[i]), nearest)
+                << "layout " << layout << " cell " << c.x << " " << c.y << " " << c.z;
+        }
+        EXPECT_GT(far, 0) << "the grid reaches past 255 cells from every occupied one";
+    }
+}
+
 } // namespace
 } // namespace cutaway::test
