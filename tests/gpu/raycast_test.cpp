@@ -156,18 +156,31 @@ TEST_F(RaycastCells, StepsOverEmptyCellsWithoutLosingASample) {
 }
 
 TEST_F(RaycastCells, FollowTheTransferFunctionFromFrameToFrame) {
-    // One renderer, one frame with the shell only, then one with the ball
-    // only: cells kept from the first frame would step over the ball.
-    json shell = sceneWith(kShellOnly), ball = sceneWith(kBallOnly);
-    shell["render"]["method"] = ball["render"]["method"] = "raycast";
-    const Scene first = parseScene(shell, "/nonexistent", "test");
-    const Scene second = parseScene(ball, "/nonexistent", "test");
-    const Image fresh = job::renderImage(ctx(), second);
-    job::FrameRenderer renderer(ctx());
-    const Image shellImage = renderer.render(first);
-    const Image reused = renderer.render(second);
-    EXPECT_GT(compareImages(shellImage, fresh).maxAbs, 0.1f) << "the two frames must differ";
-    EXPECT_LT(compareImages(reused, fresh).maxAbs, 1e-6f);
+    // One renderer, frames that switch between the shell only and the ball
+    // only, and a longer slab (a wider margin for the kept value spans):
+    // cells or bricks kept from an earlier frame would step over what shows,
+    // or spans kept for another margin would miss a slab's far end. Each frame
+    // must equal a fresh renderer's.
+    for (const char* method : {"raycast", "slicing"}) {
+        job::FrameRenderer renderer(ctx());
+        Image previous;
+        int frame = 0;
+        for (const auto& [transfer, spacing] :
+             {std::pair{kShellOnly, 1.0}, {kBallOnly, 1.0}, {kBallOnly, 2.5}, {kShellOnly, 2.5}}) {
+            json document = sceneWith(transfer);
+            document["render"]["method"] = method;
+            document["render"]["slice_spacing"] = spacing;
+            const Scene scene = parseScene(document, "/nonexistent", "test");
+            const Image fresh = job::renderImage(ctx(), scene);
+            const Image reused = renderer.render(scene);
+            EXPECT_LT(compareImages(reused, fresh).maxAbs, 1e-6f) << method << " frame " << frame;
+            if (frame > 0)
+                EXPECT_GT(compareImages(previous, reused).maxAbs, 0.05f)
+                    << method << " frame " << frame << " must differ from the one before";
+            previous = reused;
+            ++frame;
+        }
+    }
 }
 
 TEST_F(Raycast, TheToleranceSeesADifferentStep) {
