@@ -67,7 +67,8 @@ bench: configure
 	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_bench
 	@rm -rf $(BUILD)/bench/vtk
 	@$(BUILD)/bench/cutaway_bench --vtk-dir $(BUILD)/bench/vtk $(BENCH_ARGS)
-	@xvfb-run -a /usr/bin/python3 bench/vtk_bench.py $(BUILD)/bench/vtk bench/results.json
+	@xvfb-run -a /usr/bin/python3 bench/vtk_bench.py $(BUILD)/bench/vtk bench/results.json \
+	  --cutaway-bench $(BUILD)/bench/cutaway_bench
 	@/usr/bin/python3 bench/report.py bench/results.json docs/performance.md
 
 gallery: configure

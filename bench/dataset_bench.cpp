@@ -126,7 +126,7 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
     } catch (const InputError& e) {
         return {{"skipped", e.what()}};
     }
-    const nlohmann::json bakes = bakeTimes(ctx, entry, o);
+    const nlohmann::json bakes = o.bakeRepeats > 0 ? bakeTimes(ctx, entry, o) : nlohmann::json();
     // The bake timings above keep extra copies; the peak that matters is a
     // render's: from here on, as `cutaway render` would hold it.
     const double bakePeak = peakRssMiB();
@@ -194,7 +194,7 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
     const double devicePeak = double(ctx.memoryPeak()) / (1024.0 * 1024.0);
     for (auto& r : records) {
         r["device_peak_mib"] = devicePeak;
-        r["bake_ms"] = bakes;
+        if (!bakes.is_null()) r["bake_ms"] = bakes;
         r["scan_mib"] = scanMiB;
         r["peak_rss_mib"] = reset ? nlohmann::json(peak) : nlohmann::json();
         r["bake_bench_peak_rss_mib"] = bakePeak;

@@ -21,7 +21,7 @@ struct BenchOptions {
     std::vector<std::string> alignments{"none", "axis", "surface", "segment"};
     /// render.method of each row; "raycast" only renders the rows without an operator.
     std::vector<std::string> methods{"slicing", "raycast"};
-    int bakeRepeats = 3;
+    int bakeRepeats = 3;             ///< runs of each bake timing; 0: none (frames only)
     std::filesystem::path vtkDir;    ///< where to write the VTK comparison's spec; empty = none
     std::vector<SceneSetting> extra; ///< --set overrides applied to every row (experiments)
 };

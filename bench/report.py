@@ -58,6 +58,21 @@ def bake_rows(records):
     return out
 
 
+def paired_rows(records):
+    """VTK against cutaway's ray caster timed just before and after it."""
+    rows = [r for r in records if r.get("renderer") == "vtk" and r.get("cutaway_paired_ms")]
+    if not rows:
+        return []
+    out = ["VTK against cutaway's ray caster timed just before and just after it (no operator):",
+           "", "| dataset | d | VTK ms | cutaway ms before / after | ratio (> 1: cutaway faster) |",
+           "|---|---|---|---|---|"]
+    for r in rows:
+        before, after = r["cutaway_paired_ms"]
+        out.append(f"| {r['dataset']} | {r['slice_spacing']:.1f} | {r['ms_median']:.0f} |"
+                   f" {before:.0f} / {after:.0f} | {r['ms_median'] / ((before + after) / 2):.2f} |")
+    return out + [""]
+
+
 def turntable_lines(records):
     out = []
     for t in records:
@@ -87,7 +102,8 @@ def main():
              f"Measured by `make bench` on {device}; times in ms per 512x512 frame "
              "(median of the timed frames after a warm-up, the view turning between frames); "
              "bake times in ms, each the median of 3 runs.", ""]
-    lines += frame_rows(records) + [""] + bake_rows(records) + [""] + turntable_lines(records)
+    lines += frame_rows(records) + [""] + paired_rows(records) + bake_rows(records) + [""]
+    lines += turntable_lines(records)
     if vtk:
         lines += ["", f"VTK {vtk}: `vtkFixedPointVolumeRayCastMapper` on the same volume "
                   "(normalized as cutaway uploads it), view, image size, sample distance, "

@@ -89,7 +89,8 @@ void printBakes(const json& records) {
         "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::string last;
     for (const json& r : records) {
-        if (r.value("kind", "") == "turntable" || r["dataset"] == last) continue;
+        if (r.value("kind", "") == "turntable" || !r.contains("bake_ms") || r["dataset"] == last)
+            continue;
         last = r["dataset"];
         const json& b = r["bake_ms"];
         std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %.0f | %.0f |\n",
@@ -137,6 +138,9 @@ int main(int argc, char** argv) {
     app.add_option("--size", o.width, "Image width and height")->check(CLI::Range(16, 4096));
     app.add_option("--turntable", turntableFrames, "Frames of the written turntable (0: none)")
         ->check(CLI::Range(0, 360));
+    app.add_option("--bake-repeats", o.bakeRepeats,
+                   "Runs of each bake timing (0: no bake timings, frames only)")
+        ->check(CLI::Range(0, 100));
     std::vector<std::string> sets;
     app.add_option("--set", sets, "Override a scene value in every row: /json/pointer=VALUE");
     CLI11_PARSE(app, argc, argv);

@@ -12,14 +12,23 @@ and prints a table of VTK against cutaway (alignment "none").
 mm, one ray per pixel, piecewise-linear transfer function with the same opacity unit
 distance, trilinear interpolation and Phong shading with a camera headlight.
 
+With --cutaway-bench BIN, each dataset's VTK runs are paired with cutaway's: BIN
+times its ray caster on the same rows (no operator, the spec's spacings and frames)
+just before and just after VTK, so that the ratio does not depend on how fast the
+machine was minutes apart (the table's own rows ran long before). The VTK records
+carry those two medians as "cutaway_paired_ms".
+
 Usage: xvfb-run -a /usr/bin/python3 bench/vtk_bench.py SPEC_DIR RESULTS_JSON [--frames N]
+       [--cutaway-bench BIN]
 """
 import argparse
 import glob
 import json
 import os
 import statistics
+import subprocess
 import sys
+import tempfile
 import time
 
 METHOD = "vtkFixedPointVolumeRayCastMapper"
@@ -137,6 +146,23 @@ def bench_spec(vtk, spec, spec_dir, frames, version):
     return records
 
 
+def cutaway_raycast_ms(binary, spec, frames):
+    """cutaway's ray caster on the spec's rows: {slice spacing: median ms}."""
+    spacings = ",".join(f"{sd['slice_spacing']:g}" for sd in spec["sample_distances"])
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "paired.json")
+        cmd = [binary, "--datasets", spec["dataset"], "--alignments", "none",
+               "--methods", "raycast", "--spacings", spacings, "--turntable", "0",
+               "--bake-repeats", "0", "--size", str(spec["width"]), "--json", out]
+        cmd += ["--frames", str(frames or spec.get("frames", 5))]
+        run = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        if run.returncode != 0 or not os.path.exists(out):
+            sys.exit(f"vtk_bench: {' '.join(cmd)} failed:\n{run.stderr}")
+        with open(out) as f:
+            return {round(float(r["slice_spacing"]), 6): float(r["ms_median"])
+                    for r in json.load(f) if r.get("renderer") == "cutaway"}
+
+
 def print_table(vtk_records, others, version):
     def cutaway_ms(r):
         """The faster of cutaway's methods (slicing, raycast) on the same row."""
@@ -149,14 +175,17 @@ def print_table(vtk_records, others, version):
     print(f"VTK {METHOD} {version}, same volume, view, image size, sample distance, "
           "transfer function; ratio > 1 means cutaway is faster\n")
     print("| dataset | dims | d | VTK ms median | VTK fps | cutaway ms median (none, faster"
-          " method) | ratio |")
-    print("|---|---|---|---|---|---|---|")
+          " method) | ratio | cutaway ray caster just before / after VTK | paired ratio |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in vtk_records:
         c = cutaway_ms(r)
         ratio = f"{r['ms_median'] / c:.2f}" if c else "-"
+        paired = r.get("cutaway_paired_ms")
+        pair_text = " / ".join(f"{v:.1f}" for v in paired) if paired else "-"
+        pair_ratio = f"{r['ms_median'] / statistics.mean(paired):.2f}" if paired else "-"
         print(f"| {r['dataset']} | {'x'.join(map(str, r['dims']))} | {r['slice_spacing']:g} "
               f"| {r['ms_median']:.1f} | {r['fps']:.2f} | {'-' if c is None else f'{c:.1f}'} "
-              f"| {ratio} |")
+              f"| {ratio} | {pair_text} | {pair_ratio} |")
 
 
 def main():
@@ -164,6 +193,8 @@ def main():
     ap.add_argument("spec_dir")
     ap.add_argument("results_json")
     ap.add_argument("--frames", type=int, default=0, help="timed frames (default: the spec's)")
+    ap.add_argument("--cutaway-bench", default="",
+                    help="cutaway_bench binary: time its ray caster just before and after VTK")
     args = ap.parse_args()
     try:
         import vtk
@@ -185,7 +216,19 @@ def main():
     mine = []
     for path in specs:
         with open(path) as f:
-            mine += bench_spec(vtk, json.load(f), os.path.dirname(path), args.frames, version)
+            spec = json.load(f)
+        before = cutaway_raycast_ms(args.cutaway_bench, spec, args.frames) \
+            if args.cutaway_bench else None
+        records = bench_spec(vtk, spec, os.path.dirname(path), args.frames, version)
+        if before is not None:
+            after = cutaway_raycast_ms(args.cutaway_bench, spec, args.frames)
+            for r in records:
+                d = round(float(r["slice_spacing"]), 6)
+                if d in before and d in after:
+                    r["cutaway_paired_ms"] = [round(before[d], 1), round(after[d], 1)]
+                    print(f"vtk_bench: {spec['dataset']} d={d:g}: cutaway's ray caster "
+                          f"{before[d]:.1f} ms before, {after[d]:.1f} ms after", file=sys.stderr)
+        mine += records
 
     others = []
     if os.path.exists(args.results_json):

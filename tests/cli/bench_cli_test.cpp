@@ -86,8 +86,8 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
         EXPECT_LE(rec["ms_min"].get<double>(), rec["ms_median"].get<double>());
         EXPECT_LE(rec["ms_median"].get<double>(), rec["ms_max"].get<double>());
         EXPECT_NEAR(rec["fps"].get<double>() * rec["ms_median"].get<double>(), 1000.0, 1e-6);
-        for (const char* bake :
-             {"gradients_ms", "distance_field_ms", "segment_mask_ms", "operator_map_ms"})
+        for (const char* bake : {"gradients_ms", "distance_field_ms", "segment_mask_ms",
+                                 "operator_map_ms", "value_spans_ms", "classify_ms"})
             EXPECT_TRUE(rec["bake_ms"][bake].is_number()) << bake;
         EXPECT_GT(rec["peak_rss_mib"].get<double>(), 0.0);
     }
@@ -98,6 +98,23 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
     std::ifstream(vtk / "vtk_tiny.json") >> spec;
     EXPECT_EQ(spec["cameras"].size(), 2u) << "one camera per timed no-operator frame at d = 1";
     EXPECT_EQ(std::filesystem::file_size(vtk / spec["raw"].get<std::string>()), 24u * 24 * 24 * 2);
+}
+
+TEST_F(BenchCli, WithoutBakeRepeatsOnlyTheFramesAreTimed) {
+    // What vtk_bench.py runs just before and after VTK to pair the two.
+    const auto table = writeTable();
+    const auto results = m_dir / "paired.json";
+    const CommandResult r = runProgram(
+        CUTAWAY_BENCH, "--table " + table.string() + " --json " + results.string() +
+                           " --alignments none --methods raycast --spacings 1.0 --frames 1"
+                           " --size 32 --turntable 0 --bake-repeats 0");
+    ASSERT_EQ(r.code, 0) << r.output;
+    json records;
+    std::ifstream(results) >> records;
+    ASSERT_EQ(records.size(), 1u) << records.dump();
+    EXPECT_EQ(records[0]["method"], "raycast");
+    EXPECT_GT(records[0]["ms_median"].get<double>(), 0.0);
+    EXPECT_FALSE(records[0].contains("bake_ms"));
 }
 
 TEST_F(BenchCli, AMissingTableIsBadInputNamingIt) {
