@@ -20,6 +20,9 @@ layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
 // distance) is empty: each sample there, and each slab up to the margin long
 // that starts there, is transparent.
 layout(set = 0, binding = 6) uniform usampler3D cellTex;
+// transferTex's alpha alone (the same half values, R16F): transparent runs
+// look up only that; the whole texel is read once a slab shows.
+layout(set = 0, binding = 7) uniform sampler2DArray alphaTex;
 layout(push_constant) uniform Ray {
     mat4 clipToWorld;
     vec4 boxLo; // the occupied cells' bounds (world, mm)
@@ -43,6 +46,15 @@ float stepsOverEmpty(vec3 tc, vec3 tcStep, bool slabsInMargin) {
     vec3 wall = vec3(cell) + mix(vec3(1.0 - r), vec3(r), greaterThan(step, vec3(0.0)));
     vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
     return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
+}
+
+// The table's alpha for the slab from `front` to `back`: classifySlab's
+// lookup before the opacity correction, the same half values filtered alike,
+// so 0 exactly where the table gives classifySlab no opacity.
+float slabAlpha(float front, float back, float layer) {
+    vec2 at = cwPreintegrated ? vec2(front, back) * u.valueToTf.x + u.valueToTf.y
+                              : vec2(front * u.valueToTf.x + u.valueToTf.y, 0.5);
+    return textureLod(alphaTex, vec3(at, layer), 0.0).r;
 }
 
 void main() {
@@ -80,9 +92,10 @@ void main() {
         float k = first;
         bool haveFront = true; // false after stepping over empty cells
         while (k <= last) {
-            // Transparent slabs cost a volume fetch and a table lookup, empty
-            // cells a cell lookup; the gradient and the lighting run once
-            // every lane is at a visible slab or done.
+            // Transparent slabs cost a volume fetch and a lookup of the
+            // table's alpha, empty cells a cell lookup; the whole table texel,
+            // the gradient and the lighting run once every lane is at a
+            // visible slab or done.
             float next = 0.0;
             vec4 c = vec4(0.0);
             while (k <= last) {
@@ -100,13 +113,13 @@ void main() {
                     continue;
                 }
                 next = value;
-                c = classifySlab(front, cwPreintegrated ? next : front, obliquity, classLayer(tc));
-                if (c.a > 0.0) break;
+                if (slabAlpha(front, cwPreintegrated ? next : front, classLayer(tc)) > 0.0) break;
                 tc += tcStep;
                 front = next;
                 k += 1.0;
             }
             if (k > last) break;
+            c = classifySlab(front, cwPreintegrated ? next : front, obliquity, classLayer(tc));
             vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
             c = shade(c, textureLod(gradientTex, shadeAt, 0.0), toEye);
             sum += (1.0 - sum.a) * c;

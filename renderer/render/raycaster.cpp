@@ -25,7 +25,8 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                              {3, sampled, 1, cs, nullptr},
                                              {4, sampled, 1, cs, nullptr},
                                              {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                             {6, sampled, 1, cs, nullptr}});
+                                             {6, sampled, 1, cs, nullptr},
+                                             {7, sampled, 1, cs, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
 }
 
@@ -34,7 +35,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target) c
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                         {sampled, 5},
+                                                         {sampled, 6},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
@@ -46,6 +47,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target) c
                               target.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, m_cells.distance.view.get(), ro,
                               m_nearest);
+    gpu::writeImageDescriptor(m_ctx, set.set, 7, sampled, in.transferAlpha, ro, m_linear);
     return set;
 }
 

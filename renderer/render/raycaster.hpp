@@ -28,6 +28,7 @@ public:
         VkBuffer uniforms;
         VkDeviceSize uniformBytes;
         VkImageView values, gradients, transfer, classes;
+        VkImageView transferAlpha; ///< the table's alpha alone (R16F)
     };
     /// Remakes the empty-space cells (ray_cells.hpp) the rays step over when
     /// `occupancySerial` (what `visible` was made for) or the margin for the

@@ -47,9 +47,15 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
 
 // The classification tables, one layer per transfer function (/transfer, then
 // /transfer/labels): the 1D function (post-classification) or its
-// pre-integrated 2D table for slabs one slice spacing thick.
-gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
-                          double sliceMm) {
+// pre-integrated 2D table for slabs one slice spacing thick. Also their alpha
+// alone (R16F, the same half values): the ray caster's transparent runs look
+// up only that, a quarter of the texel (docs/performance.md).
+struct TransferImages {
+    gpu::Image table, alpha;
+};
+
+TransferImages uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
+                              double sliceMm) {
     std::vector<const TransferFunction*> functions{&scene.transfer};
     if (volume.labels) {
         for (const LabelTransfer& t : scene.labelTransfers)
@@ -59,22 +65,31 @@ gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const Gpu
     const uint32_t width = preintegrated ? kPreintegrationSize : kTransferTableSize;
     const uint32_t height = preintegrated ? kPreintegrationSize : 1;
     std::vector<uint64_t> halves;
+    std::vector<uint16_t> alphas;
     halves.reserve(std::size_t(width) * height * functions.size());
+    alphas.reserve(halves.capacity());
     for (const TransferFunction* tf : functions) {
         std::vector<glm::vec4> table = tabulateTransfer(*tf, volume.window);
         if (preintegrated) table = preintegrate(table, volume.smallestSpacing(), sliceMm);
-        for (const glm::vec4& entry : table)
+        for (const glm::vec4& entry : table) {
             halves.push_back(glm::packHalf4x16(entry));
+            alphas.push_back(glm::packHalf1x16(entry.w));
+        }
     }
-    gpu::Image image =
-        gpu::createImageArray(ctx, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height},
-                              static_cast<uint32_t>(functions.size()),
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    gpu::uploadImage(ctx, image, halves.data(), halves.size() * sizeof(uint64_t),
+    const auto layers = static_cast<uint32_t>(functions.size());
+    const auto usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    const auto stages = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT; // slicing and ray casting
+    TransferImages images;
+    images.table =
+        gpu::createImageArray(ctx, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height}, layers, usage);
+    gpu::uploadImage(ctx, images.table, halves.data(), halves.size() * sizeof(uint64_t),
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, stages);
+    images.alpha = gpu::createImageArray(ctx, VK_FORMAT_R16_SFLOAT, {width, height}, layers, usage);
+    gpu::uploadImage(ctx, images.alpha, alphas.data(), alphas.size() * sizeof(uint16_t),
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT); // slicing and ray casting
-    return image;
+                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    return images;
 }
 
 // Each voxel's classification layer (R8_UINT), or a single 0 without labels.
@@ -426,7 +441,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         }
     }
     if (!m_transfer.image || transferKey != m_transferKey) {
-        m_transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
+        TransferImages images = uploadTransfer(m_ctx, scene, volume, sliceMm);
+        m_transfer = std::move(images.table);
+        m_transferAlpha = std::move(images.alpha);
         m_transferKey = std::move(transferKey);
     }
     if (!m_classes.image || classKey != m_classesKey) {
@@ -582,9 +599,10 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
     }
     m_raycaster->prepareCells(volume, m_cellSpans ? &*m_cellSpans : nullptr, *m_visible,
                               m_occupancySerial, marginVoxels);
-    const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
-                                   volume.values.view.get(), volume.gradients.view.get(),
-                                   transfer.view.get(),      m_classes.view.get()};
+    const Raycaster::Inputs inputs{m_uniforms.buffer.get(),   sizeof(shader::FrameUniforms),
+                                   volume.values.view.get(),  volume.gradients.view.get(),
+                                   transfer.view.get(),       m_classes.view.get(),
+                                   m_transferAlpha.view.get()};
     const gpu::DescriptorSet set = m_raycaster->bind(inputs, m_rayTarget);
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
         m_raycaster->record(cmd, set.set, m_rayTarget, cam, variant);

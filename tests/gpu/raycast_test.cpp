@@ -67,6 +67,21 @@ TEST_F(Raycast, MatchesSlicingPreintegratedAndPost) {
     expectSameAsSlicing(scene, "post-classified, d = 0.5");
 }
 
+TEST_F(Raycast, TransparentRunsAskTheTablesAlphaAlone) {
+    // The rays look up only the alpha while nothing shows, then the whole
+    // texel: colours without red (or green, or blue) must show all the same,
+    // in both classifications.
+    json scene = headScene();
+    scene.erase("labels");
+    scene["transfer"] = json::parse(R"({"points": [{"value": 0, "color": [0, 0.6, 1], "alpha": 0},
+          {"value": 60, "color": [0, 0.6, 1], "alpha": 0.05},
+          {"value": 140, "color": [1, 0, 0.5], "alpha": 0.3},
+          {"value": 200, "color": [0.4, 1, 0], "alpha": 0.8}]})");
+    EXPECT_GT(expectSameAsSlicing(scene, "pre-integrated, colours without a channel"), 500.0);
+    scene["render"]["classification"] = "post";
+    EXPECT_GT(expectSameAsSlicing(scene, "post-classified, colours without a channel"), 500.0);
+}
+
 TEST_F(Raycast, MatchesSlicingOrthographicWithLightsAndLabels) {
     json scene = headScene();
     scene["camera"]["projection"] = "orthographic";
