@@ -1,12 +1,31 @@
 #include "turntable_bench.hpp"
 
 #include "bench_util.hpp"
+#include "job/render_job.hpp"
 #include "job/sequence.hpp"
 
 #include <algorithm>
 #include <cstdio>
 
 namespace cutaway::bench {
+
+namespace {
+
+// The single-frame rate of `scene` as the Table 1 rows take it (a warm-up
+// frame, then `frames` with the view turning), in a renderer of its own.
+double singleFrameFps(const gpu::Context& ctx, Scene scene, int frames) {
+    job::FrameRenderer renderer(ctx);
+    const double azimuth = scene.camera.azimuthDeg;
+    renderer.render(scene);
+    std::vector<double> ms;
+    for (int i = 1; i <= frames; ++i) {
+        scene.camera.azimuthDeg = azimuth + 360.0 * i / frames;
+        ms.push_back(millisecondsOf([&] { renderer.render(scene); }));
+    }
+    return 1000.0 / statsOf(ms).median;
+}
+
+} // namespace
 
 nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<DatasetEntry>& entries,
                               const std::vector<std::string>& only, const BenchOptions& o,
@@ -37,7 +56,11 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
         options.overrides.outputPattern = (dir / "frame_####.exr").string();
         std::fprintf(stderr, "turntable: %s, %d frames to %s\n", entry.dataset.c_str(), frames,
                      dir.c_str());
+        // Single frames just before and just after: the machine's speed
+        // drifts over minutes, so the rows timed earlier are no yardstick.
+        const double singleBefore = singleFrameFps(ctx, scene, o.frames);
         const job::SequenceSummary summary = job::renderSequence(ctx, scene, options);
+        const double singleAfter = singleFrameFps(ctx, scene, o.frames);
         std::filesystem::remove_all(dir);
         std::vector<double> ms;
         for (const double s : summary.frameSeconds)
@@ -62,6 +85,8 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
                 {"steady_fps", steadyFps},
                 {"first_frame_s", done.empty() ? 0.0 : done.front()},
                 {"frame_ms_median", s.median},
+                {"single_fps_before", singleBefore},
+                {"single_fps_after", singleAfter},
                 {"writes", "EXR (half) + PNG per frame"}};
     }
     return {{"skipped", "no dataset with a surface row is present"}};
@@ -78,11 +103,13 @@ void printTurntable(const nlohmann::json& records) {
         }
         std::printf("\nturntable (%s, surface, d = 1.0, %d frames written as %s): %.1f s in all "
                     "(%.2f fps), the first frame's files after %.1f s (loading and bakes), "
-                    "%.2f fps sustained from there; single frames: %.2f fps\n",
+                    "%.2f fps sustained from there; single frames: %.2f fps in the table, "
+                    "%.2f just before and %.2f just after the turntable\n",
                     t["dataset"].get<std::string>().c_str(), t["frames"].get<int>(),
                     t["writes"].get<std::string>().c_str(), t["total_s"].get<double>(),
                     t["sustained_fps"].get<double>(), t["first_frame_s"].get<double>(),
-                    t["steady_fps"].get<double>(), single);
+                    t["steady_fps"].get<double>(), single, t.value("single_fps_before", 0.0),
+                    t.value("single_fps_after", 0.0));
     }
 }
 

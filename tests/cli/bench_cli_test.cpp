@@ -69,6 +69,9 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
             // The steady rate leaves out the first frame's loading and bakes.
             EXPECT_GT(rec["first_frame_s"].get<double>(), 0.0);
             EXPECT_LT(rec["first_frame_s"].get<double>(), rec["total_s"].get<double>());
+            // Single frames paired with it, just before and just after.
+            EXPECT_GT(rec["single_fps_before"].get<double>(), 0.0);
+            EXPECT_GT(rec["single_fps_after"].get<double>(), 0.0);
             EXPECT_NEAR(rec["steady_fps"].get<double>() *
                             (rec["total_s"].get<double>() - rec["first_frame_s"].get<double>()),
                         1.0, 0.05);
