@@ -90,8 +90,8 @@ private:
     std::unique_ptr<Raycaster> m_raycaster;
     gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
     gpu::Buffer m_rayReadback;
-    std::optional<SpanGrid> m_cellSpans;    ///< the ray caster's cells (null: no host scan)
-    std::optional<SpanGrid> m_brickSpans;   ///< the bricks', coarsened from the cells'
+    std::optional<SpanGrid> m_cellSpans;    ///< the ray caster's cells; the bricks' are their 2x2x2
+                                            ///< unions (null: no host scan)
     std::vector<double> m_spanKey;          ///< volume, window, margin
     std::optional<VisibleValues> m_visible; ///< what the frame's classification can show
     BrickOccupancy m_occupancy;
