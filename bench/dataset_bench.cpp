@@ -7,6 +7,7 @@
 #include "operators/operator_geometry.hpp"
 #include "render/feature_fields.hpp"
 #include "render/ray_cells.hpp"
+#include "render/transfer_table.hpp"
 #include "scene/scene.hpp"
 #include "vtk_spec.hpp"
 
@@ -77,12 +78,9 @@ nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
         brickSpans = render::coarsened(cellSpans);
     });
     bakes["classify_ms"] = medianMs(o.bakeRepeats, [&] {
-        std::vector<const TransferFunction*> transfers{&base.transfer};
-        if (labels)
-            for (const LabelTransfer& t : base.labelTransfers)
-                transfers.push_back(&t.transfer);
         const render::VisibleValues visible(
-            transfers, window, base.render.classification == Classification::Preintegrated);
+            render::classifyingTransfers(base, labels != nullptr), window,
+            base.render.classification == Classification::Preintegrated);
         (void)render::brickOccupancy(brickSpans, gv.box, scan.spacing, visible);
         (void)render::rayCells(cellSpans, visible);
     });

@@ -31,8 +31,7 @@ void fillSums(BrickOccupancy& occ) {
 
 } // namespace
 
-std::vector<ValueSpan> cellRanges(const Volume& scan, bake::ValueWindow window, int cellVoxels,
-                                  int extra) {
+SpanGrid spanGrid(const Volume& scan, bake::ValueWindow window, int cellVoxels, int extra) {
     const int k = cellVoxels;
     const glm::ivec3 n = (scan.dims + (k - 1)) / k;
     // The range over a cell's reach is separable: each row's values reduced
@@ -74,12 +73,7 @@ std::vector<ValueSpan> cellRanges(const Volume& scan, bake::ValueWindow window, 
             for (std::size_t i = 0; i < slice.size(); ++i)
                 grid[i + slice.size() * std::size_t(cz)].add(slice[i]);
     }
-    return grid;
-}
-
-SpanGrid spanGrid(const Volume& scan, bake::ValueWindow window, int cellVoxels, int extra) {
-    return {(scan.dims + (cellVoxels - 1)) / cellVoxels, cellVoxels,
-            cellRanges(scan, window, cellVoxels, extra)};
+    return {n, k, std::move(grid)};
 }
 
 SpanGrid coarsened(const SpanGrid& fine) {

@@ -56,13 +56,9 @@ struct ValueSpan {
 
 /// Per cell of `cellVoxels`^3 (x fastest; the last ones partial), the span of
 /// the values normalized over `window` (clamped to [0, 1]) of the voxels
-/// within `extra` of the cell, clamped to the volume.
-std::vector<ValueSpan> cellRanges(const Volume& scan, bake::ValueWindow window, int cellVoxels,
-                                  int extra);
-
-/// cellRanges with the grid it spans. They depend on the scan, the window and
-/// the reach, not on the transfer functions: a new classification only
-/// re-flags the cells.
+/// within `extra` of the cell, clamped to the volume. The spans depend on the
+/// scan, the window and the reach, not on the transfer functions: a new
+/// classification only re-flags the cells.
 struct SpanGrid {
     glm::ivec3 cells{0};
     int cellVoxels = 0;

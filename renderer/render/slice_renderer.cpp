@@ -56,11 +56,8 @@ struct TransferImages {
 
 TransferImages uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
                               double sliceMm) {
-    std::vector<const TransferFunction*> functions{&scene.transfer};
-    if (volume.labels) {
-        for (const LabelTransfer& t : scene.labelTransfers)
-            functions.push_back(&t.transfer);
-    }
+    const std::vector<const TransferFunction*> functions =
+        classifyingTransfers(scene, volume.labels != nullptr);
     const bool preintegrated = scene.render.classification == Classification::Preintegrated;
     const uint32_t width = preintegrated ? kPreintegrationSize : kTransferTableSize;
     const uint32_t height = preintegrated ? kPreintegrationSize : 1;
@@ -210,11 +207,8 @@ void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
 
 const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuVolume& volume,
                                                   int marginVoxels) {
-    std::vector<const TransferFunction*> transfers{&scene.transfer};
-    if (volume.labels) {
-        for (const LabelTransfer& t : scene.labelTransfers)
-            transfers.push_back(&t.transfer);
-    }
+    const std::vector<const TransferFunction*> transfers =
+        classifyingTransfers(scene, volume.labels != nullptr);
     const bool preintegrated = scene.render.classification == Classification::Preintegrated;
     std::vector<double> key{double(volume.serial), volume.window.lo, volume.window.hi,
                             preintegrated ? 1.0 : 0.0, double(marginVoxels)};

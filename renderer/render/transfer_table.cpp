@@ -4,6 +4,14 @@
 
 namespace cutaway::render {
 
+std::vector<const TransferFunction*> classifyingTransfers(const Scene& scene, bool withLabels) {
+    std::vector<const TransferFunction*> transfers{&scene.transfer};
+    if (withLabels)
+        for (const LabelTransfer& t : scene.labelTransfers)
+            transfers.push_back(&t.transfer);
+    return transfers;
+}
+
 glm::vec4 evaluateTransfer(const TransferFunction& tf, double value) {
     const auto& pts = tf.points;
     if (pts.empty()) return glm::vec4(0.0f);

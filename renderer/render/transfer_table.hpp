@@ -15,6 +15,10 @@ constexpr int kTransferTableSize = 1024;
 std::vector<glm::vec4> tabulateTransfer(const TransferFunction& tf, bake::ValueWindow window,
                                         int n = kTransferTableSize);
 
+/// The functions a scene classifies with, in the order of the table's layers:
+/// /transfer, then /transfer/labels when the volume has labels.
+std::vector<const TransferFunction*> classifyingTransfers(const Scene& scene, bool withLabels);
+
 /// Evaluates the piecewise-linear function at one value (clamped to the end points).
 glm::vec4 evaluateTransfer(const TransferFunction& tf, double value);
 
