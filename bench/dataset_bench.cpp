@@ -145,7 +145,6 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
     for (const std::string& alignment : o.alignments) {
         if (!entry.alignments.count(alignment)) continue;
         for (const std::string& method : o.methods) {
-            if (method == "raycast" && alignment != "none") continue;
             for (const double spacing : o.spacings) {
                 std::vector<SceneSetting> settings = rowSettings(entry, alignment, spacing, o);
                 settings.push_back({"/render/method", method});

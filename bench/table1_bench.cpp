@@ -130,9 +130,7 @@ int main(int argc, char** argv) {
     app.add_option("--alignments", alignments, "Only these rows: none,axis,surface,segment");
     app.add_option("--spacings", spacings, "Slice spacings d (comma-separated)");
     std::string methods = "slicing,raycast";
-    app.add_option(
-        "--methods", methods,
-        "render.method of the rows: slicing,raycast (raycast: rows without an operator)");
+    app.add_option("--methods", methods, "render.method of the rows: slicing,raycast");
     app.add_option("--frames", o.frames, "Timed frames per row, after one warm-up")
         ->check(CLI::Range(1, 1000));
     app.add_option("--size", o.width, "Image width and height")->check(CLI::Range(16, 4096));

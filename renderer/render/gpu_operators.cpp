@@ -1,5 +1,6 @@
 #include "render/gpu_operators.hpp"
 
+#include "render/operator_regions.hpp"
 #include "shared/feature.h"
 #include "shared/operator_frame.h"
 
@@ -38,6 +39,7 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
                         static_cast<float>(al.band));
     // The feature field is on the volume's grid (a 1^3 texture for axis alignment).
     u.featureScale = glm::vec4(glm::vec3(0.5 / volume.spacing), 0.0f);
+    u.blocks = glm::vec4(glm::vec3(spec.resolution) / float(kOperatorBlockTexels), 0.0f);
     return u;
 }
 

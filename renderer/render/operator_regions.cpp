@@ -8,9 +8,6 @@
 namespace cutaway::render {
 namespace {
 
-// Map texels per region block along each axis: blocks of about a brick.
-constexpr int kBlockTexels = 2;
-
 // One texel of the baked map, as operator_bake.comp computes it.
 struct Texel {
     glm::vec3 displacement; // pre-image minus the texel's position, local units
@@ -59,9 +56,8 @@ double coverage(const std::vector<operators::LocalBox>& regions, const operators
     return covered / volume(box);
 }
 
-std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
-                                                 const operators::WorldBox& box,
-                                                 const BrickOccupancy& occupancy, double reachMm) {
+OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBox& box,
+                              const BrickOccupancy& occupancy, double reachMm) {
     const glm::ivec3 res = spec.resolution;
     const glm::dvec3 lo = box.local.lo, hi = box.local.hi;
     const glm::dvec3 texel = (hi - lo) / glm::dvec3(res);
@@ -78,17 +74,19 @@ std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
         glm::min(occupancy.brickMm.x, glm::min(occupancy.brickMm.y, occupancy.brickMm.z)) /
         double(kBrickVoxels) * 0.5;
 
-    const glm::ivec3 blocks = (res + (kBlockTexels - 1)) / kBlockTexels;
-    std::vector<uint8_t> active(std::size_t(blocks.x) * blocks.y * blocks.z, 0);
+    const glm::ivec3 blocks = (res + (kOperatorBlockTexels - 1)) / kOperatorBlockTexels;
+    OperatorBlocks result{blocks,
+                          std::vector<uint8_t>(std::size_t(blocks.x) * blocks.y * blocks.z)};
+    std::vector<uint8_t>& active = result.active;
     std::size_t index = 0;
     for (int bz = 0; bz < blocks.z; ++bz)
         for (int by = 0; by < blocks.y; ++by)
             for (int bx = 0; bx < blocks.x; ++bx, ++index) {
                 const glm::ivec3 b(bx, by, bz);
                 // The block's part of the box, and what the shader samples from it.
-                const glm::dvec3 blockLo = lo + glm::dvec3(b * kBlockTexels) * texel;
+                const glm::dvec3 blockLo = lo + glm::dvec3(b * kOperatorBlockTexels) * texel;
                 const glm::dvec3 blockHi =
-                    glm::min(hi, lo + glm::dvec3((b + 1) * kBlockTexels) * texel);
+                    glm::min(hi, lo + glm::dvec3((b + 1) * kOperatorBlockTexels) * texel);
                 const glm::dvec3 spanLo = blockLo - reach, spanHi = blockHi + reach;
                 // p' itself: a feature point, or the volume beyond the map's reach.
                 const Box prime = worldBounds(box.localToWorld, spanLo, spanHi);
@@ -117,11 +115,25 @@ std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
                 active[index] = occupancy.anyIn(source.lo - pad, source.hi + pad) ? 1 : 0;
             }
 
+    return result;
+}
+
+std::vector<operators::LocalBox> operatorRegions(const OperatorBlocks& blocks,
+                                                 const operators::WorldBox& box,
+                                                 const OperatorSpec& spec) {
+    const glm::dvec3 lo = box.local.lo, hi = box.local.hi;
+    const glm::dvec3 texel = (hi - lo) / glm::dvec3(spec.resolution);
     std::vector<operators::LocalBox> regions;
-    for (const CellRun& r : mergeCells(blocks, active))
-        regions.push_back({lo + glm::dvec3(r.lo * kBlockTexels) * texel,
-                           glm::min(hi, lo + glm::dvec3(r.hi * kBlockTexels) * texel)});
+    for (const CellRun& r : mergeCells(blocks.dims, blocks.active))
+        regions.push_back({lo + glm::dvec3(r.lo * kOperatorBlockTexels) * texel,
+                           glm::min(hi, lo + glm::dvec3(r.hi * kOperatorBlockTexels) * texel)});
     return regions;
+}
+
+std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
+                                                 const operators::WorldBox& box,
+                                                 const BrickOccupancy& occupancy, double reachMm) {
+    return operatorRegions(operatorBlocks(spec, box, occupancy, reachMm), box, spec);
 }
 
 } // namespace cutaway::render

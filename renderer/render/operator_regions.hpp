@@ -27,6 +27,25 @@ constexpr double kWholeBoxCoverage = 0.85;
 /// The fraction of the box [lo, hi] that `regions` (inside it, disjoint) cover.
 double coverage(const std::vector<operators::LocalBox>& regions, const operators::LocalBox& box);
 
+/// Map texels per region block along each axis: blocks of about a brick.
+constexpr int kOperatorBlockTexels = 2;
+
+/// The operator's box cut into blocks of kOperatorBlockTexels^3 map texels
+/// (the last ones partial): a block is active where the operator shader can
+/// produce a visible sample at a point of it, given the volume's occupancy
+/// and `reachMm` (how far from its point a sample reads: a slab's length).
+struct OperatorBlocks {
+    glm::ivec3 dims{0};
+    std::vector<uint8_t> active; ///< per block, x fastest: 1 active
+};
+OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBox& box,
+                              const BrickOccupancy& occupancy, double reachMm);
+
+/// The active blocks merged into boxes of the operator's local frame.
+std::vector<operators::LocalBox> operatorRegions(const OperatorBlocks& blocks,
+                                                 const operators::WorldBox& box,
+                                                 const OperatorSpec& spec);
+
 /// Boxes of the operator's local frame, inside `box.local` and not
 /// overlapping, that cover every point of its deformed box where the operator
 /// shader can produce a visible sample, given the volume's `occupancy`;

@@ -4,13 +4,11 @@
 #include <array>
 
 namespace cutaway::render {
-namespace {
 
-// The chessboard (L-infinity) distance from each cell to the nearest flagged
-// one, at most 255: two raster passes of the 26-neighbour chamfer mask with
-// unit weights, which is exact for this metric (a shortest chessboard path
-// splits into steps the forward pass follows, then steps the backward pass
-// follows), in place and without the fronts a breadth-first search keeps.
+// Two raster passes of the 26-neighbour chamfer mask with unit weights, which
+// is exact for this metric (a shortest chessboard path splits into steps the
+// forward pass follows, then steps the backward pass follows), in place and
+// without the fronts a breadth-first search keeps.
 std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>& flags) {
     constexpr int kFar = 255;
     std::vector<uint8_t> distance(flags.size());
@@ -46,8 +44,6 @@ std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>
                 relax({x, y, z}, -1);
     return distance;
 }
-
-} // namespace
 
 RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
     RayCells result;

@@ -26,6 +26,11 @@ struct RayCells {
     glm::ivec3 lo{0}, hi{0};
 };
 
+/// Per cell of a grid of `n` cells (x fastest): 0 where `flags` is set, else
+/// the chessboard (L-infinity) distance in cells to the nearest set one, at
+/// most 255 (255 everywhere when none is).
+std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>& flags);
+
 /// The cells whose spans (kRayCellVoxels cells reaching 1 + the margin) are
 /// `spans`, where `visible` says which values can show.
 RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible);

@@ -1,7 +1,10 @@
 #include "render/raycaster.hpp"
 
 #include "raycast_comp.spv.h"
+#include "raycast_operators_comp.spv.h"
 #include "render/ray_cells.hpp"
+
+#include <stdexcept>
 
 namespace cutaway::render {
 namespace {
@@ -15,7 +18,8 @@ struct RayPush { // matches the push constants of shaders/raycast.comp.glsl
 
 } // namespace
 
-Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler nearest)
+Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler nearest,
+                     VkDescriptorSetLayout operatorSetLayout)
     : m_ctx(ctx), m_linear(linear), m_nearest(nearest) {
     const auto cs = VK_SHADER_STAGE_COMPUTE_BIT;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -26,16 +30,28 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                              {4, sampled, 1, cs, nullptr},
                                              {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
                                              {6, sampled, 1, cs, nullptr},
-                                             {7, sampled, 1, cs, nullptr}});
+                                             {7, sampled, 1, cs, nullptr},
+                                             {8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
+                                             {9, sampled, 1, cs, nullptr},
+                                             {10, sampled, 1, cs, nullptr},
+                                             {11, sampled, 1, cs, nullptr}});
+    static_assert(CW_RAY_MAX_OPERATORS == 3, "one binding per slot's blocks: 9, 10, 11");
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
+    std::vector<VkDescriptorSetLayout> sets(1 + CW_RAY_MAX_OPERATORS, operatorSetLayout);
+    sets[0] = m_setLayout.get();
+    m_operatorLayout = gpu::createPipelineLayout(ctx, sets, sizeof(RayPush), cs);
+    m_operatorUniforms =
+        gpu::createBuffer(ctx, sizeof(shader::OperatorUniforms) * CW_RAY_MAX_OPERATORS,
+                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
 
-gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target) const {
+gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target,
+                                   const std::vector<Operator>& operators) const {
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
-                                                        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                         {sampled, 6},
+                                                        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+                                                         {sampled, 9},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
@@ -48,20 +64,46 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target) c
     gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, m_cells.distance.view.get(), ro,
                               m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 7, sampled, in.transferAlpha, ro, m_linear);
+    gpu::writeBufferDescriptor(m_ctx, set.set, 8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                               m_operatorUniforms.buffer.get(), m_operatorUniforms.size);
+    // Slots without an operator repeat the first one's, or the cells' (unread,
+    // but lavapipe binds every descriptor of a set).
+    for (std::size_t i = 0; i < CW_RAY_MAX_OPERATORS; ++i) {
+        const VkImageView blocks = operators.empty()      ? m_cells.distance.view.get()
+                                   : i < operators.size() ? operators[i].blocks
+                                                          : operators[0].blocks;
+        gpu::writeImageDescriptor(m_ctx, set.set, static_cast<uint32_t>(9 + i), sampled, blocks, ro,
+                                  m_nearest);
+    }
     return set;
 }
 
-VkPipeline Raycaster::pipelineFor(const SliceVariant& variant) {
-    auto found = m_pipelines.find(variant);
-    if (found == m_pipelines.end()) {
+VkPipeline Raycaster::pipelineFor(const SliceVariant& variant, const std::vector<int>& alignments) {
+    const auto key = std::make_pair(variant, alignments);
+    auto found = m_pipelines.find(key);
+    if (found != m_pipelines.end()) return found->second.get();
+    gpu::PipelineHandle pipeline;
+    if (alignments.empty()) {
         auto module = gpu::createShaderModule(m_ctx, raycast_comp_spv, sizeof(raycast_comp_spv));
         const SliceConstants constants(variant);
-        found = m_pipelines
-                    .emplace(variant, gpu::createComputePipeline(m_ctx, m_layout.get(),
-                                                                 module.get(), constants.info()))
-                    .first;
+        pipeline =
+            gpu::createComputePipeline(m_ctx, m_layout.get(), module.get(), constants.info());
+    } else {
+        // Slot 0's alignment is the slicing shaders' constant 4; then the
+        // operator count and slots 1 and 2's alignments.
+        SliceVariant first = variant;
+        first.alignment = alignments[0];
+        const auto at = [&](std::size_t i) {
+            return static_cast<uint32_t>(i < alignments.size() ? alignments[i] : 0);
+        };
+        const SliceConstants constants(first,
+                                       {static_cast<uint32_t>(alignments.size()), at(1), at(2)});
+        auto module = gpu::createShaderModule(m_ctx, raycast_operators_comp_spv,
+                                              sizeof(raycast_operators_comp_spv));
+        pipeline = gpu::createComputePipeline(m_ctx, m_operatorLayout.get(), module.get(),
+                                              constants.info());
     }
-    return found->second.get();
+    return m_pipelines.emplace(key, std::move(pipeline)).first->second.get();
 }
 
 void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
@@ -88,17 +130,33 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
 }
 
 void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
-                       const CameraMatrices& camera, const SliceVariant& variant) {
+                       const CameraMatrices& camera, const SliceVariant& variant,
+                       const std::vector<Operator>& operators) {
+    if (operators.size() > CW_RAY_MAX_OPERATORS)
+        throw std::logic_error("the ray caster takes at most CW_RAY_MAX_OPERATORS operators");
     gpu::transition(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                     VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     const RayPush push{glm::mat4(glm::inverse(camera.viewProj)),
                        glm::vec4(glm::vec3(m_cells.bounds.lo), 0.0f),
                        glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f), m_cells.perTexture};
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant));
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &set, 0,
-                            nullptr);
-    vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    std::vector<int> alignments;
+    // Set 0, then each operator's; unused slots repeat the first operator's
+    // (the shader's constants leave them unread, but bound they must be).
+    std::vector<VkDescriptorSet> sets{set};
+    auto* uniforms = static_cast<shader::OperatorUniforms*>(m_operatorUniforms.mapped);
+    for (std::size_t i = 0; i < operators.size(); ++i) {
+        alignments.push_back(operators[i].alignment);
+        uniforms[i] = *operators[i].uniforms;
+    }
+    if (!operators.empty())
+        for (std::size_t i = 0; i < CW_RAY_MAX_OPERATORS; ++i)
+            sets.push_back(operators[i < operators.size() ? i : 0].set);
+    const VkPipelineLayout layout = operators.empty() ? m_layout.get() : m_operatorLayout.get();
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant, alignments));
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,
+                            static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, (target.extent.width + 7) / 8, (target.extent.height + 7) / 8, 1);
     gpu::transition(cmd, target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,

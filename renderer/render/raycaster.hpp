@@ -2,9 +2,9 @@
 // The ray-casting integrator (render.method "raycast"; docs/performance.md):
 // a compute pass, one invocation per pixel, that samples where the slicing
 // planes cross each ray and calls the slicing shaders' per-sample code, so
-// its images match slicing's (tests/gpu/raycast_test.cpp). Scenes without
-// operators, meshes or the operator-id channel; the scene parser refuses
-// the rest.
+// its images match slicing's (tests/gpu/raycast_test.cpp). Scenes with up
+// to CW_RAY_MAX_OPERATORS operators, without meshes or the operator-id
+// channel; the scene parser refuses the rest.
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
@@ -12,16 +12,21 @@
 #include "render/gpu_volume.hpp"
 #include "render/occupancy.hpp"
 #include "render/slice_pipeline.hpp"
+#include "shared/operator_frame.h"
 
 #include <cstdint>
 #include <map>
 #include <utility>
+#include <vector>
 
 namespace cutaway::render {
 
 class Raycaster {
 public:
-    Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler nearest);
+    /// `operatorSetLayout`: the layout of an operator's descriptor set
+    /// (GpuOperator::set, the slicing shader's set 1), visible to compute.
+    Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler nearest,
+              VkDescriptorSetLayout operatorSetLayout);
 
     /// What one frame reads (as the slicing pass's set 0) and writes.
     struct Inputs {
@@ -37,23 +42,41 @@ public:
     /// host: one cell, the whole box). Call before bind().
     void prepareCells(const GpuVolume& volume, const SpanGrid* spans, const VisibleValues& visible,
                       uint64_t occupancySerial, int marginVoxels);
-    gpu::DescriptorSet bind(const Inputs& inputs, const gpu::Image& target) const;
+    /// An operator of the frame: its descriptor set (map and feature field),
+    /// its blocks' chessboard distances (R8_UINT, operator_regions.hpp and
+    /// ray_cells.hpp), its uniforms and its CW_ALIGN_* code.
+    struct Operator {
+        VkDescriptorSet set;
+        VkImageView blocks;
+        const shader::OperatorUniforms* uniforms;
+        int alignment;
+    };
+    /// Set 0 of a frame with these `inputs` and `operators` (see record()).
+    gpu::DescriptorSet bind(const Inputs& inputs, const gpu::Image& target,
+                            const std::vector<Operator>& operators) const;
 
     /// Records the pass: `target` (RGBA32F, storage) goes from UNDEFINED to
     /// TRANSFER_SRC_OPTIMAL holding premultiplied colour over nothing.
-    /// The rays march through the occupied cells' bounds and step over the
-    /// empty cells.
+    /// The rays march through the occupied cells' bounds, stepping over the
+    /// empty cells, and through the `operators`' deformed boxes (at most
+    /// CW_RAY_MAX_OPERATORS, not overlapping), whose uniforms it copies into
+    /// a buffer of set 0 (binding 8): call before submitting, once per frame.
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
-                const CameraMatrices& camera, const SliceVariant& variant);
+                const CameraMatrices& camera, const SliceVariant& variant,
+                const std::vector<Operator>& operators);
 
 private:
-    VkPipeline pipelineFor(const SliceVariant& variant);
+    /// The pipeline for `variant` and the operators' alignments (none: the
+    /// shader without operators).
+    VkPipeline pipelineFor(const SliceVariant& variant, const std::vector<int>& alignments);
 
     const gpu::Context& m_ctx;
     VkSampler m_linear, m_nearest;
     gpu::DescriptorSetLayoutHandle m_setLayout;
     gpu::PipelineLayoutHandle m_layout;
-    std::map<SliceVariant, gpu::PipelineHandle> m_pipelines;
+    gpu::PipelineLayoutHandle m_operatorLayout; ///< set 0, then one set per operator slot
+    std::map<std::pair<SliceVariant, std::vector<int>>, gpu::PipelineHandle> m_pipelines;
+    gpu::Buffer m_operatorUniforms; ///< CW_RAY_MAX_OPERATORS OperatorUniforms, host-mapped
     struct Cells {
         gpu::Image distance;                ///< R8_UINT, RayCells::distance
         glm::vec4 perTexture{0.0f};         ///< xyz: cells across the texture; w: the longest slab

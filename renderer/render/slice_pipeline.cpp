@@ -7,6 +7,8 @@
 #include "slice_operator_id_frag.spv.h"
 #include "slice_vert.spv.h"
 
+#include <cassert>
+
 namespace cutaway::render {
 
 namespace {
@@ -25,12 +27,16 @@ gpu::ShaderModuleHandle fragmentShader(const gpu::Context& ctx, SliceProxy proxy
 
 } // namespace
 
-SliceConstants::SliceConstants(const SliceVariant& v)
+SliceConstants::SliceConstants(const SliceVariant& v, std::initializer_list<uint32_t> more)
     : m_values{v.preintegrated, v.byLabel, v.shading, static_cast<uint32_t>(v.lights),
                static_cast<uint32_t>(v.alignment)} { // booleans are 32-bit VkBool32
-    for (uint32_t i = 0; i < 5; ++i)
+    assert(more.size() <= kMost - 5);
+    uint32_t count = 5;
+    for (uint32_t value : more)
+        m_values[count++] = value;
+    for (uint32_t i = 0; i < count; ++i)
         m_entries[i] = {i, i * 4u, 4u};
-    m_info = {5, m_entries, sizeof m_values, m_values};
+    m_info = {count, m_entries, count * 4u, m_values};
 }
 
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,

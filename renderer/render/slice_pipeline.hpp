@@ -12,6 +12,7 @@
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 
+#include <initializer_list>
 #include <vulkan/vulkan.h>
 
 namespace cutaway::render {
@@ -42,17 +43,19 @@ struct SliceVariant {
 };
 
 /// The specialization constants of `variant` (constant_id 0..4 of
-/// shaders/glsl/sample_common.h), for the slicing and ray-casting pipelines.
+/// shaders/glsl/sample_common.h), for the slicing and ray-casting pipelines,
+/// and up to three `more` (constant_id 5, 6, 7: the ray caster's operators).
 class SliceConstants {
 public:
-    explicit SliceConstants(const SliceVariant& variant);
+    explicit SliceConstants(const SliceVariant& variant, std::initializer_list<uint32_t> more = {});
     SliceConstants(const SliceConstants&) = delete;
     SliceConstants& operator=(const SliceConstants&) = delete;
     const VkSpecializationInfo* info() const { return &m_info; }
 
 private:
-    uint32_t m_values[5];
-    VkSpecializationMapEntry m_entries[5];
+    static constexpr uint32_t kMost = 8;
+    uint32_t m_values[kMost];
+    VkSpecializationMapEntry m_entries[kMost];
     VkSpecializationInfo m_info;
 };
 

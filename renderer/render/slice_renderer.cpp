@@ -149,15 +149,18 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
+    // An operator's set: read by its slicing shader and by the ray caster.
+    const auto fragOrCompute = frag | VK_SHADER_STAGE_COMPUTE_BIT;
     m_operatorSetLayout = gpu::createSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, frag, nullptr},
-              {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
-              {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
+        ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fragOrCompute, nullptr},
+              {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragOrCompute, nullptr},
+              {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragOrCompute, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get(), m_operatorSetLayout.get()});
     m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
     m_meshes = std::make_unique<MeshPass>(ctx, m_setLayout.get());
     m_saturation = std::make_unique<SaturationPass>(ctx, m_nearest.get());
-    m_raycaster = std::make_unique<Raycaster>(ctx, m_sampler.get(), m_nearest.get());
+    m_raycaster = std::make_unique<Raycaster>(ctx, m_sampler.get(), m_nearest.get(),
+                                              m_operatorSetLayout.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
                                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
@@ -239,8 +242,8 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
     return m_occupancy;
 }
 
-const std::vector<operators::LocalBox>&
-SliceRenderer::regionsFor(std::size_t index, const GpuOperator& op, double reachMm) {
+SliceRenderer::Regions& SliceRenderer::regionsFor(std::size_t index, const GpuOperator& op,
+                                                  double reachMm) {
     // What the regions depend on: the occupancy, the map and where it lies.
     std::vector<double> key{double(m_occupancySerial), reachMm};
     const auto add = [&](const float* v, std::size_t n) { key.insert(key.end(), v, v + n); };
@@ -254,10 +257,12 @@ SliceRenderer::regionsFor(std::size_t index, const GpuOperator& op, double reach
     if (m_regions.size() <= index) m_regions.resize(index + 1);
     Regions& r = m_regions[index];
     if (r.key != key) {
-        r.boxes = operatorRegions(op.spec, op.box, m_occupancy, reachMm);
+        r.blocks = operatorBlocks(op.spec, op.box, m_occupancy, reachMm);
+        r.boxes = operatorRegions(r.blocks, op.box, op.spec);
+        r.distance = {};
         r.key = std::move(key);
     }
-    return r.boxes;
+    return r;
 }
 
 VkPipeline SliceRenderer::pipelineFor(const SliceVariant& variant) {
@@ -369,10 +374,11 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const double reachMm = sliceMm * std::sqrt(1.0 + tanX * tanX + tanY * tanY) * 1.01;
     const int margin = slabMargin(reachMm / volume.smallestSpacing()); // for empty space
     occupancyFor(scene, volume, margin);
-    std::vector<Proxy> proxies;
+    const bool raycast = scene.render.method == RenderMethod::Raycast;
+    std::vector<Proxy> proxies; // none for the ray caster
     m_roles.clear();
     const auto& ops = m_operators->operators();
-    for (std::size_t i = 0; i < ops.size(); ++i) {
+    for (std::size_t i = 0; i < (raycast ? 0 : ops.size()); ++i) {
         const GpuOperator& op = *ops[i];
         const int index = static_cast<int>(i);
         proxies.push_back(orientedBoxProxy(op.box.localToWorld, op.box.local.lo, op.box.local.hi));
@@ -380,7 +386,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
             m_roles.push_back({index, false});
             continue;
         }
-        const std::vector<operators::LocalBox>& regions = regionsFor(i, op, reachMm);
+        const std::vector<operators::LocalBox>& regions = regionsFor(i, op, reachMm).boxes;
         if (coverage(regions, op.box.local) > kWholeBoxCoverage) { // not worth a stencil pass
             m_roles.push_back({index, false});
             continue;
@@ -392,13 +398,12 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         }
     }
     // The volume's proxy: its occupied bricks (empty-space skipping).
-    for (const Box& box : m_occupied) {
+    for (const Box& box : raycast ? std::vector<Box>{} : m_occupied) {
         proxies.push_back(boxProxy(box));
         m_roles.push_back({});
     }
     checkPlaneCount(bounds, sliceMm, scene.render.sliceSpacing, volume.smallestSpacing());
     const double minDepth = cam.perspective ? cam.nearPlane : -1e30;
-    const bool raycast = scene.render.method == RenderMethod::Raycast;
     const SliceSet slices =
         raycast ? SliceSet{} : buildSlices(proxies, cam.eye, cam.forward, sliceMm, minDepth);
     m_stats = {slices.sliceCount, slices.triangles.size(), m_operators->bakes()};
@@ -477,7 +482,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     if (raycast) {
-        Image image = renderRaycast(cam, volume, transfer, variant, margin);
+        Image image = renderRaycast(cam, volume, transfer, variant, margin, reachMm);
         compositeUnder(image, scene.render.background);
         return image;
     }
@@ -578,7 +583,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
 
 Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                                    const gpu::Image& transfer, const SliceVariant& variant,
-                                   int marginVoxels) {
+                                   int marginVoxels, double reachMm) {
     const uint32_t width = m_color.extent.width, height = m_color.extent.height;
     if (!m_rayTarget.image || m_rayTarget.extent.width != width ||
         m_rayTarget.extent.height != height) {
@@ -590,13 +595,30 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
     }
     m_raycaster->prepareCells(volume, m_cellSpans ? &*m_cellSpans : nullptr, *m_visible,
                               m_occupancySerial, marginVoxels);
+    std::vector<Raycaster::Operator> operators;
+    const auto& ops = m_operators->operators();
+    for (std::size_t i = 0; i < ops.size(); ++i) {
+        const GpuOperator& op = *ops[i];
+        Regions& regions = regionsFor(i, op, reachMm);
+        if (!regions.distance.image) {
+            const glm::uvec3 n(regions.blocks.dims);
+            const std::vector<uint8_t> distance =
+                chessboardDistance(regions.blocks.dims, regions.blocks.active);
+            regions.distance =
+                gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, distance.data(),
+                                         distance.size(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        }
+        operators.push_back({op.set.set, regions.distance.view.get(),
+                             static_cast<const shader::OperatorUniforms*>(op.uniforms.mapped),
+                             alignmentCode(op.spec.alignment.mode)});
+    }
     const Raycaster::Inputs inputs{m_uniforms.buffer.get(),   sizeof(shader::FrameUniforms),
                                    volume.values.view.get(),  volume.gradients.view.get(),
                                    transfer.view.get(),       m_classes.view.get(),
                                    m_transferAlpha.view.get()};
-    const gpu::DescriptorSet set = m_raycaster->bind(inputs, m_rayTarget);
+    const gpu::DescriptorSet set = m_raycaster->bind(inputs, m_rayTarget, operators);
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        m_raycaster->record(cmd, set.set, m_rayTarget, cam, variant);
+        m_raycaster->record(cmd, set.set, m_rayTarget, cam, variant, operators);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = m_rayTarget.extent;

@@ -65,14 +65,22 @@ private:
     /// `marginVoxels`: for the frame's longest slab (slabMargin).
     const BrickOccupancy& occupancyFor(const Scene& scene, const GpuVolume& volume,
                                        int marginVoxels);
-    /// Operator `index`'s regions (operatorRegions), remade when it or the
-    /// occupancy changes.
-    const std::vector<operators::LocalBox>& regionsFor(std::size_t index, const GpuOperator& op,
-                                                       double reachMm);
+    struct Regions {
+        std::vector<double> key;
+        OperatorBlocks blocks;
+        std::vector<operators::LocalBox> boxes; ///< the active blocks, merged
+        gpu::Image distance; ///< the ray caster's: chessboardDistance of the blocks (R8_UINT),
+                             ///< made on first use
+    };
+    /// Operator `index`'s blocks and regions (operatorBlocks), remade when it
+    /// or the occupancy changes.
+    Regions& regionsFor(std::size_t index, const GpuOperator& op, double reachMm);
     /// render.method "raycast": the frame by ray casting, over nothing.
     /// `marginVoxels`: for the frame's longest slab (slabMargin).
+    /// `reachMm`: the frame's longest slab, for the operators' blocks.
     Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
-                        const gpu::Image& transfer, const SliceVariant& variant, int marginVoxels);
+                        const gpu::Image& transfer, const SliceVariant& variant, int marginVoxels,
+                        double reachMm);
     static void compositeUnder(Image& image, glm::vec4 background);
     /// The pipeline of `variant`, made on first use (a few per scene).
     VkPipeline pipelineFor(const SliceVariant& variant);
@@ -98,10 +106,6 @@ private:
     std::vector<Box> m_occupied; ///< m_occupancy.boxes(): the volume's proxies
     std::vector<double> m_occupiedKey;
     uint64_t m_occupancySerial = 0; ///< counts remakes of m_occupancy
-    struct Regions {
-        std::vector<double> key;
-        std::vector<operators::LocalBox> boxes;
-    };
     std::vector<Regions> m_regions; ///< per operator
     bool m_operatorSkipping = true;
     /// What each proxy of the frame is: operator `op`'s stencil box or one of

@@ -6,6 +6,7 @@
 #include "scene/json_reader.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_sections.hpp"
+#include "shared/operator_frame.h"
 
 #include <cerrno>
 #include <fstream>
@@ -177,15 +178,17 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
                               "classification by label needs \"operator_composition\": "
                               "\"separate\" when there are several operators");
     }
-    // Ray casting integrates the untouched volume only.
+    // The ray caster takes a few operators, and neither meshes nor ids.
     if (scene.render.method == RenderMethod::Raycast) {
-        const char* what = !scene.operators.empty()  ? "operators"
-                           : !scene.meshes.empty()   ? "meshes"
-                           : scene.output.operatorId ? "\"output\": {\"operator_id\": true}"
-                                                     : nullptr;
-        if (what)
-            diagnostics.error("/render/method", std::string("\"raycast\" renders scenes without ") +
-                                                    what + "; use \"slicing\"");
+        const std::string what =
+            scene.operators.size() > CW_RAY_MAX_OPERATORS
+                ? "at most " + std::to_string(CW_RAY_MAX_OPERATORS) + " operators"
+            : !scene.meshes.empty()   ? std::string("no meshes")
+            : scene.output.operatorId ? std::string("no \"output\": {\"operator_id\": true}")
+                                      : std::string();
+        if (!what.empty())
+            diagnostics.error("/render/method",
+                              "\"raycast\" renders scenes with " + what + "; use \"slicing\"");
     }
     // Relative output patterns (the default too) resolve against the scene's folder.
     const std::filesystem::path pattern(scene.output.pattern);

@@ -5,6 +5,11 @@
 
 #include "shared/glsl_cpp.h"
 
+// The most operators a ray-cast frame takes (glsl/ray_march.h): the frame's
+// descriptor set and one per operator stay within the four sets every Vulkan
+// device can bind at once.
+#define CW_RAY_MAX_OPERATORS 3
+
 CW_NAMESPACE_BEGIN
 
 struct OperatorUniforms {
@@ -16,6 +21,8 @@ struct OperatorUniforms {
     vec4 align;        // x: CW_ALIGN_* (feature.h); y: tau, z: delta (mm, surface);
                        // w: delta for segment alignment's mask (mm, informational)
     vec4 featureScale; // xyz: 1 / (2 spacing) of the feature field's grid, 1/mm
+    vec4 blocks;       // xyz: the map's texels across its domain / the texels per block
+                       // (render/operator_regions.hpp; the ray caster's skipping)
 };
 
 // Baking: the push constants of operator_bake.comp.
@@ -32,7 +39,7 @@ struct OperatorBakeParams {
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 5 * 16);
+static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 6 * 16);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, align) == 176);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, mapLo) == 128);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, band) == 160);

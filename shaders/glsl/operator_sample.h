@@ -1,0 +1,260 @@
+// GLSL only: what an operator does to one slab of the deformed space, shared
+// by the operator slicing shader (slice_operator.h) and the ray caster
+// (raycast_operators.comp.glsl). A point p' of the deformed space takes the
+// probe p0 from the operator's baked map (Eq. 2, 3, placed by Eq. 8); the
+// feature mask decides between p0, p' and nothing (Eq. 4; axis alignment:
+// Eq. 6). The normal is the volume gradient carried through the Jacobian of
+// the map (Eq. 5), blended with the feature's (Eq. 9, 10) and toward the
+// cut's within the band D (Eq. 7).
+//
+// Every function takes the operator it works for: its uniforms `op`, its
+// baked `map`, its `feature` field (surface: DT in mm; segment: M; both R16F
+// over the volume's grid; a 1^3 texture for axis alignment) and its alignment
+// `mode` (CW_ALIGN_*, a constant of the pipeline, so the compiler drops the
+// other modes' code).
+#ifndef CUTAWAY_OPERATOR_SAMPLE_H
+#define CUTAWAY_OPERATOR_SAMPLE_H
+
+#include "glsl/sample_common.h"
+#include "shared/feature.h"
+#include "shared/operator_frame.h"
+
+vec4 mapAt(OperatorUniforms op, sampler3D map, vec3 local) {
+    return textureLod(map, (local - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz), 0.0);
+}
+
+// xyz: the probe p0 in the world; w: signed distance to the cut (local units).
+vec4 probe(OperatorUniforms op, sampler3D map, vec3 world) {
+    vec3 q = (op.worldToLocal * vec4(world, 1.0)).xyz;
+    vec4 m = mapAt(op, map, q);
+    return vec4((op.localToWorld * vec4(q + m.xyz, 1.0)).xyz, m.w);
+}
+
+bool inVolume(vec3 tc) {
+    return all(greaterThanEqual(tc, vec3(0.0))) && all(lessThanEqual(tc, vec3(1.0)));
+}
+
+// M at texture coordinate tc (0 for axis alignment); `f` receives the
+// feature field there (DT or M), which featureGradient reads again.
+float maskAt(OperatorUniforms op, sampler3D feature, int mode, vec3 tc, out float f) {
+    f = 0.0;
+    if (mode == CW_ALIGN_AXIS) return 0.0;
+    f = textureLod(feature, tc, 0.0).r;
+    if (mode == CW_ALIGN_SURFACE) return surfaceMask(f, op.align.y, op.align.z);
+    ivec3 dims = textureSize(feature, 0);
+    ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+    return segmentMask(f, texelFetch(feature, voxel, 0).r >= 0.5);
+}
+
+// The feature field's unit gradient (into the feature) at the voxel nearest
+// to tc, by central differences over its neighbours: the field stores no
+// gradient (2 bytes a voxel instead of 8). Six texel reads cost about what the
+// RGBA16F gradient's one filtered fetch did on lavapipe; six filtered fetches
+// (a gradient that varies within a voxel) made an operator frame 30 % slower.
+vec3 featureDirection(OperatorUniforms op, sampler3D feature, vec3 tc) {
+    ivec3 dims = textureSize(feature, 0);
+    ivec3 v = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+    ivec3 lo = max(v - 1, ivec3(0)), hi = min(v + 1, dims - 1);
+    vec3 below = vec3(texelFetch(feature, ivec3(lo.x, v.y, v.z), 0).r,
+                      texelFetch(feature, ivec3(v.x, lo.y, v.z), 0).r,
+                      texelFetch(feature, ivec3(v.x, v.y, lo.z), 0).r);
+    vec3 above = vec3(texelFetch(feature, ivec3(hi.x, v.y, v.z), 0).r,
+                      texelFetch(feature, ivec3(v.x, hi.y, v.z), 0).r,
+                      texelFetch(feature, ivec3(v.x, v.y, hi.z), 0).r);
+    return featureGradientOf(below, above, op.featureScale.xyz);
+}
+
+struct Resolved {
+    int which;     // CW_CASE_*
+    vec3 tc;       // texture coordinate of p (transformed or masked)
+    float value;   // the volume there
+    float cutW;    // the map's signed cut distance at p'
+    float feature; // the feature field at tc (alignment other than axis)
+    float m0;      // the mask M at p0 and at p' (0 with axis alignment)
+    float mPrime;
+};
+
+// Eq. 3 and 4 for the point p' = world, and the volume's value at p.
+Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int mode, vec3 world) {
+    vec4 p0 = probe(op, map, world);
+    vec3 tc0 = toTexture(p0.xyz);
+    vec3 tcPrime = toTexture(world);
+    bool p0Valid = p0.w > 0.0 && inVolume(tc0);
+    bool primeIn = inVolume(tcPrime);
+    float f0, fPrime;
+    float m0 = maskAt(op, feature, mode, tc0, f0);
+    float mPrime = maskAt(op, feature, mode, tcPrime, fPrime);
+    Resolved r;
+    r.which = featureCase(p0Valid, p0Valid ? m0 : 0.0, primeIn, primeIn ? mPrime : 0.0);
+    bool masked = r.which == CW_CASE_MASKED;
+    r.tc = masked ? tcPrime : tc0;
+    r.value = textureLod(volumeTex, r.tc, 0.0).r;
+    r.feature = masked ? fPrime : f0;
+    r.cutW = p0.w;
+    r.m0 = m0;
+    r.mPrime = mPrime;
+    return r;
+}
+
+// The source-space gradient at p (data gradient, with Eq. 9 / 10 applied);
+// f is the feature field at p, whose texture coordinate is tc.
+vec4 featureGradient(OperatorUniforms op, sampler3D feature, int mode, vec4 g, float f, vec3 tc,
+                     bool moved) {
+    if (mode == CW_ALIGN_AXIS) return g;
+    if (mode == CW_ALIGN_SURFACE) {
+        float beta = surfaceBeta(f, op.align.y, op.align.z);
+        if (beta == 0.0) return g;
+        return vec4(surfaceNormal(g.xyz, featureDirection(op, feature, tc), beta),
+                    mix(g.w, 1.0, abs(beta)));
+    }
+    // Segment: only moved points (M < 0.5) change. Near the segment the data
+    // gradient gives way to the segment-aware one (into the segment), which
+    // Eq. 10 turns over as M approaches 0.5.
+    float m = f;
+    float gamma = segmentGamma(m);
+    if (!moved || gamma == 0.0) return g;
+    vec3 toward = mix(g.xyz, featureDirection(op, feature, tc), clamp(2.0 * m, 0.0, 1.0));
+    return vec4(segmentNormal(toward, gamma), mix(g.w, 1.0, clamp(2.0 * m, 0.0, 1.0)));
+}
+
+// For a slab with one end `v` kept and the other `e` empty: the quantity
+// whose sign change emptied e, at v (> 0) and at e (<= 0 when it explains e):
+// w for a cut, 0.5 - M at p0 where the feature stays behind, M at p' - 0.5
+// where the feature left in place ends.
+vec2 presence(Resolved v, Resolved e) {
+    if (v.which == CW_CASE_MASKED) return vec2(v.mPrime - 0.5, e.mPrime - 0.5);
+    if (e.cutW <= 0.0) return vec2(v.cutW, e.cutW);
+    return vec2(0.5 - v.m0, 0.5 - e.m0);
+}
+
+// The part of such a slab that is kept: the quantity is linear across a slab,
+// so the material ends where it crosses 0. Clipping the slab instead of
+// keeping or dropping it whole stops a cut face (or the face the feature left)
+// from showing the slices as contour lines. `otherwise` where the quantity
+// does not explain the empty end (outside the volume). Pre-integrated only:
+// post-classified slices have no back.
+float keptFraction(vec2 q, float otherwise) {
+    if (q.y > 0.0) return otherwise;
+    return clamp(q.x / max(q.x - q.y, 1e-6), 0.0, 1.0);
+}
+
+// The antiderivative of clamp(w / d, 0, 1).
+float rampIntegral(float w, float d) {
+    float c = clamp(w, 0.0, d);
+    return c * c / (2.0 * d) + max(w - d, 0.0);
+}
+
+// The mean of clamp(w / d, 0, 1) over a slab where w runs linearly from a to
+// b: Eq. 7's weight for the whole slab, not at one point of it. A band of a
+// slice or two would otherwise show the slices as steps of shading.
+float bandMean(float a, float b, float d) {
+    if (abs(b - a) < 1e-4 * d) return clamp(0.5 * (a + b) / d, 0.0, 1.0);
+    return (rampIntegral(b, d) - rampIntegral(a, d)) / (b - a);
+}
+
+// What the operator makes of the slab from p' (resolved `front`) to the next
+// plane along the ray (`back`; post-classified frames have no back and pass
+// the front again): the values it classifies, the part the cut leaves, and
+// where it is shaded.
+struct Slab {
+    bool empty; // nothing shows: a cut, an opening, the feature's place
+    Resolved middle;
+    float frontValue, backValue;
+    float kept;        // the fraction of the slab the cut leaves
+    float shadeAt;     // where along the slab (0 front, 1 back) it is shaded
+    float wNear, wFar; // w at the ends of the kept part
+};
+
+Slab operatorSlab(Resolved front, Resolved back) {
+    Slab s;
+    bool frontEmpty = front.which == CW_CASE_EMPTY;
+    s.empty = frontEmpty;
+    s.middle = front;
+    s.frontValue = s.backValue = frontEmpty ? 0.0 : front.value;
+    s.kept = 1.0;
+    s.shadeAt = 0.0;
+    s.wNear = s.wFar = front.cutW;
+    if (!cwPreintegrated) return s;
+    bool backEmpty = back.which == CW_CASE_EMPTY;
+    s.shadeAt = 0.5;
+    if (frontEmpty) { // the slab enters the material through a face
+        if (backEmpty) return s;
+        s.empty = false;
+        s.kept = keptFraction(presence(back, front), 0.0);
+        s.middle = back;
+        bool cut = back.which == CW_CASE_TRANSFORMED && front.cutW <= 0.0;
+        s.wNear = cut ? 0.0 : back.cutW;
+        s.wFar = back.cutW;
+        s.frontValue = s.backValue = back.value;
+        s.shadeAt = 1.0 - 0.5 * s.kept;
+    } else if (backEmpty) { // it leaves the material through a face
+        s.kept = keptFraction(presence(front, back), 1.0);
+        bool cut = front.which == CW_CASE_TRANSFORMED && back.cutW <= 0.0;
+        s.wFar = cut ? 0.0 : front.cutW;
+        s.shadeAt = 0.5 * s.kept;
+    } else {
+        s.backValue = back.value;
+        if (back.which == front.which) { // the middle, halfway: exact where the map is affine
+            s.middle.tc = 0.5 * (front.tc + back.tc);
+            s.middle.feature = 0.5 * (front.feature + back.feature);
+            s.wFar = back.cutW;
+        }
+    }
+    s.empty = s.empty || s.kept <= 0.0;
+    return s;
+}
+
+// The slab's premultiplied, shaded colour; `world` is p' (the slab's front),
+// `stepMm` the slab's length along the ray toward -toEye. `moved`: whether
+// the colour came from a point that moved with the operator (not the
+// feature left in place).
+vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D feature, int mode, Slab s,
+                       vec3 world, vec3 toEye, float obliquity, float stepMm, out bool moved) {
+    moved = false;
+    if (s.empty) return vec4(0.0);
+    bool masked = s.middle.which == CW_CASE_MASKED;
+    moved = !masked;
+    float layer = classLayer(s.middle.tc);
+    vec3 shadePoint = world - toEye * (s.shadeAt * stepMm);
+    vec4 c = classifySlab(s.frontValue, s.backValue, obliquity * s.kept, layer);
+    if (c.a <= 0.0) return vec4(0.0);
+
+    // One gradient fetch and one feature gradient for both cases below: on
+    // SIMD CPUs both sides of a branch run, so a call in each would cost twice.
+    vec4 g = featureGradient(op, feature, mode, textureLod(gradientTex, s.middle.tc, 0.0),
+                             s.middle.feature, s.middle.tc, !masked);
+    if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
+        vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
+        return shade(c, n, toEye);
+    }
+
+    // Jacobian of the continuous backward map and gradient of the cut distance,
+    // by central differences over one texel of the map.
+    vec3 q = (op.worldToLocal * vec4(shadePoint, 1.0)).xyz;
+    float h = op.mapHi.w;
+    mat3 jacobian;
+    vec3 cutGradient;
+    for (int i = 0; i < 3; ++i) {
+        vec3 e = vec3(0.0);
+        e[i] = h;
+        vec4 d = (mapAt(op, map, q + e) - mapAt(op, map, q - e)) / (2.0 * h);
+        vec3 column = d.xyz;
+        column[i] += 1.0;
+        jacobian[i] = column;
+        cutGradient[i] = d.w;
+    }
+    mat3 a = mat3(op.localToWorld);
+    mat3 aInvT = transpose(mat3(op.worldToLocal));
+    vec3 carried = aInvT * (transpose(jacobian) * (transpose(a) * g.xyz)); // Eq. 5
+    vec3 cut = aInvT * cutGradient; // points into the material
+    float omega = op.band.x > 0.0 ? 1.0 - bandMean(s.wNear, s.wFar, op.band.x) : 0.0;
+    vec4 gradient = vec4(dot(carried, carried) > 1e-12 ? normalize(carried) : vec3(0.0), g.w);
+    if (omega > 0.0 && dot(cut, cut) > 1e-12) { // Eq. 7
+        vec3 blended = mix(gradient.xyz, normalize(cut), omega);
+        gradient = vec4(dot(blended, blended) > 1e-12 ? normalize(blended) : normalize(cut),
+                        mix(g.w, 1.0, omega));
+    }
+    return shade(c, gradient, toEye);
+}
+
+#endif

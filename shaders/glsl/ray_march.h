@@ -1,0 +1,325 @@
+// GLSL only: the ray caster (render.method "raycast", docs/performance.md):
+// one invocation per pixel marches its ray front to back, taking its samples
+// where the ray crosses the slicing planes s_k = (k + 0.5) * spacing, so it
+// samples exactly where slicing would and calls the same per-sample code
+// (sample_common.h, operator_sample.h). What it saves over slicing: a slab's
+// back is the next slab's front (one volume fetch, or one resolve of Eq. 3-4
+// in an operator's box, per sample instead of two), no rasterization or
+// blending, and a ray stops the moment it is opaque. It also steps over empty
+// cells, and takes the gradient and lighting only at visible slabs: lavapipe
+// runs 8 rays in lock-step and pays for both sides of a branch, but a loop
+// ends when all its lanes leave it, so transparent runs are inner loops of
+// their own.
+//
+// raycast.comp.glsl renders the untouched volume; raycast_operators.comp.glsl
+// defines CW_RAY_OPERATORS: up to CW_RAY_MAX_OPERATORS operators, each one's
+// descriptor set (the slicing shader's set 1) bound as set 1 + slot for its
+// map and feature field, their uniforms side by side in set 0. A ray
+// splits into runs of samples: those in an operator's deformed box (the
+// operator's proxy; the boxes do not overlap) take that operator's slabs,
+// the others the untouched volume's, as slicing's stencil decides.
+#ifndef CUTAWAY_RAY_MARCH_H
+#define CUTAWAY_RAY_MARCH_H
+
+#ifdef CW_RAY_OPERATORS
+#include "glsl/operator_sample.h"
+#else
+#include "glsl/sample_common.h"
+#endif
+
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
+// One texel per cell of kRayCellVoxels^3 (render/ray_cells.hpp): 0 where the
+// cell is occupied; else r, and every cell within r - 1 of it (chessboard
+// distance) is empty: each sample there, and each slab up to the margin long
+// that starts there, is transparent.
+layout(set = 0, binding = 6) uniform usampler3D cellTex;
+// transferTex's alpha alone (the same half values, R16F): transparent runs
+// look up only that; the whole texel is read once a slab shows.
+layout(set = 0, binding = 7) uniform sampler2DArray alphaTex;
+layout(push_constant) uniform Ray {
+    mat4 clipToWorld;
+    vec4 boxLo; // the occupied cells' bounds (world, mm)
+    vec4 boxHi;
+    vec4 cellsPerTexture; // xyz: cells across the texture, the last one partial;
+                          // w: the longest slab they cover (voxels along each axis)
+}
+ray;
+
+// One ray: where it starts and goes, and its samples k (whole numbers) at
+// p(k) = origin + dir * t(k) on the slicing planes.
+struct March {
+    vec3 origin, dir, toEye;
+    float obliquity; // 1 / cos of the angle between the ray and the view
+    float spacing;   // between the planes, along the view (mm)
+    float so, fd;    // the origin's and the direction's distance along the view
+    float first;     // the first sample; tcFirst is its texture coordinate
+    vec3 tcFirst, tcStep;
+    bool slabsInMargin; // the ray's slabs are no longer than the cells' margin
+};
+
+vec3 pointAt(March m, float k) {
+    return m.origin + m.dir * (((k + 0.5) * m.spacing - m.so) / m.fd);
+}
+
+// The samples whose points lie between ray parameters t0 and t1: (first, last),
+// first > last when there are none.
+vec2 samplesBetween(March m, float t0, float t1) {
+    return vec2(ceil((m.so + t0 * m.fd) / m.spacing - 0.5),
+                floor((m.so + t1 * m.fd) / m.spacing - 0.5));
+}
+
+// The ray parameters where it enters and leaves the box [lo, hi], along the
+// ray origin + t * dir, from t = 0 on.
+vec2 rayThroughBox(vec3 origin, vec3 dir, vec3 lo, vec3 hi) {
+    vec3 inv = 1.0 / dir;
+    vec3 ta = (lo - origin) * inv, tb = (hi - origin) * inv;
+    vec3 tMin = min(ta, tb), tMax = max(ta, tb);
+    return vec2(max(max(tMin.x, tMin.y), max(tMin.z, 0.0)), min(min(tMax.x, tMax.y), tMax.z));
+}
+
+// How many steps of `tcStep` from `tc` until the ray leaves the cube of empty
+// cells around the cell it is in, when that cell is empty and the ray's slabs
+// are no longer than the cells' margin; 0 otherwise. Never steps past a sample
+// outside the cube, so it skips only samples (and the slabs they start) that
+// the cells say are transparent.
+float stepsOverEmpty(vec3 tc, vec3 tcStep, bool slabsInMargin) {
+    vec3 at = tc * ray.cellsPerTexture.xyz;
+    ivec3 cell = clamp(ivec3(floor(at)), ivec3(0), textureSize(cellTex, 0) - 1);
+    uint free = texelFetch(cellTex, cell, 0).r;
+    if (!slabsInMargin || free == 0u) return 0.0;
+    vec3 step = tcStep * ray.cellsPerTexture.xyz;
+    float r = float(free); // the empty cube: cells [cell - (r - 1), cell + r)
+    vec3 wall = vec3(cell) + mix(vec3(1.0 - r), vec3(r), greaterThan(step, vec3(0.0)));
+    vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
+    return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
+}
+
+// The table's alpha for the slab from `front` to `back`: classifySlab's
+// lookup before the opacity correction, the same half values filtered alike,
+// so 0 exactly where the table gives classifySlab no opacity.
+float slabAlpha(float front, float back, float layer) {
+    vec2 at = cwPreintegrated ? vec2(front, back) * u.valueToTf.x + u.valueToTf.y
+                              : vec2(front * u.valueToTf.x + u.valueToTf.y, 0.5);
+    return textureLod(alphaTex, vec3(at, layer), 0.0).r;
+}
+
+// Samples k0..k1 of the untouched volume, composited into `sum`.
+void backgroundRun(March m, float k0, float k1, inout vec4 sum) {
+    float k = k0;
+    vec3 tc = m.tcFirst + (k0 - m.first) * m.tcStep;
+    vec3 tcStep = m.tcStep;
+    float front = textureLod(volumeTex, tc, 0.0).r;
+    bool haveFront = true; // false after stepping over empty cells
+    while (k <= k1) {
+        // Transparent slabs cost a volume fetch and a lookup of the table's
+        // alpha, empty cells a cell lookup; the whole table texel, the
+        // gradient and the lighting run once every lane is at a visible slab
+        // or done.
+        float next = 0.0;
+        while (k <= k1) {
+            float skip = stepsOverEmpty(tc, tcStep, m.slabsInMargin);
+            if (skip > 0.0) {
+                k += skip;
+                tc += skip * tcStep;
+                haveFront = false;
+                continue;
+            }
+            float value = textureLod(volumeTex, haveFront ? tc + tcStep : tc, 0.0).r;
+            if (!haveFront) {
+                front = value;
+                haveFront = true;
+                continue;
+            }
+            next = value;
+            if (slabAlpha(front, cwPreintegrated ? next : front, classLayer(tc)) > 0.0) break;
+            tc += tcStep;
+            front = next;
+            k += 1.0;
+        }
+        if (k > k1) break;
+        vec4 c = classifySlab(front, cwPreintegrated ? next : front, m.obliquity, classLayer(tc));
+        vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
+        c = shade(c, textureLod(gradientTex, shadeAt, 0.0), m.toEye);
+        sum += (1.0 - sum.a) * c;
+        if (sum.a >= CW_OPAQUE_ALPHA) break;
+        tc += tcStep;
+        front = next;
+        k += 1.0;
+    }
+}
+
+#ifdef CW_RAY_OPERATORS
+// How many samples from `k` on lie in the cube of empty blocks of the
+// operator around the block that p(k) is in (render/operator_regions.hpp:
+// blocks of map texels where the operator shader, reading up to a slab from
+// its point, shows nothing; each holds its chessboard distance r to the
+// nearest active block, 0 when active): 0 when that block is active. Like
+// stepsOverEmpty, never past a sample outside the cube.
+float stepsOverEmptyBlocks(OperatorUniforms op, usampler3D blocks, March m, float k) {
+    vec3 span = op.mapHi.xyz - op.mapLo.xyz;
+    vec3 q = (op.worldToLocal * vec4(pointAt(m, k), 1.0)).xyz;
+    vec3 at = (q - op.mapLo.xyz) / span * op.blocks.xyz;
+    ivec3 block = clamp(ivec3(floor(at)), ivec3(0), textureSize(blocks, 0) - 1);
+    uint free = texelFetch(blocks, block, 0).r;
+    if (free == 0u) return 0.0;
+    vec3 step = mat3(op.worldToLocal) * (m.dir * (m.spacing / m.fd)) / span * op.blocks.xyz;
+    float r = float(free);
+    vec3 wall = vec3(block) + mix(vec3(1.0 - r), vec3(r), greaterThan(step, vec3(0.0)));
+    vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
+    return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
+}
+
+// Samples k0..k1, all in the operator's deformed box, composited into `sum`.
+// Each resolves one point: a slab's back is the next one's front.
+void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler3D blocks, int mode,
+                 March m, float k0, float k1, inout vec4 sum) {
+    float stepMm = m.spacing * m.obliquity;
+    float k = k0;
+    Resolved front;
+    bool haveFront = false; // false at first and after stepping over empty blocks
+    while (k <= k1) {
+        // Empty blocks cost a block lookup, transparent slabs a resolve and a
+        // lookup of the table's alpha.
+        Resolved next;
+        Slab s;
+        while (k <= k1) {
+            float skip = stepsOverEmptyBlocks(op, blocks, m, k);
+            if (skip > 0.0) {
+                k += skip;
+                haveFront = false;
+                continue;
+            }
+            next = resolve(op, map, feature, mode, pointAt(m, haveFront ? k + 1.0 : k));
+            if (!haveFront) {
+                front = next;
+                haveFront = true;
+                continue;
+            }
+            s = operatorSlab(front, cwPreintegrated ? next : front);
+            if (!s.empty && slabAlpha(s.frontValue, s.backValue, classLayer(s.middle.tc)) > 0.0)
+                break;
+            front = next;
+            k += 1.0;
+        }
+        if (k > k1) break;
+        bool moved;
+        vec4 c = shadeOperatorSlab(op, map, feature, mode, s, pointAt(m, k), m.toEye, m.obliquity,
+                                   stepMm, moved);
+        sum += (1.0 - sum.a) * c;
+        if (sum.a >= CW_OPAQUE_ALPHA) break;
+        front = next;
+        k += 1.0;
+    }
+}
+
+layout(constant_id = 5) const int cwOperatorCount = 1; // 1..CW_RAY_MAX_OPERATORS
+layout(constant_id = 6) const int cwAlignment1 = 0;    // slot 1's CW_ALIGN_*; slot 0's is
+layout(constant_id = 7) const int cwAlignment2 = 0;    // cwAlignment
+// The slots' uniforms, all in one buffer of set 0: lavapipe (Mesa 22.3)
+// crashed reading a fourth uniform buffer in a compute shader.
+layout(std140, set = 0, binding = 8) uniform RayOperators {
+    OperatorUniforms ops[CW_RAY_MAX_OPERATORS];
+}
+slots;
+layout(set = 1, binding = 1) uniform sampler3D map0;
+layout(set = 1, binding = 2) uniform sampler3D feature0;
+layout(set = 2, binding = 1) uniform sampler3D map1;
+layout(set = 2, binding = 2) uniform sampler3D feature1;
+layout(set = 3, binding = 1) uniform sampler3D map2;
+layout(set = 3, binding = 2) uniform sampler3D feature2;
+// Each slot's blocks' distances (see stepsOverEmptyBlocks).
+layout(set = 0, binding = 9) uniform usampler3D blocks0;
+layout(set = 0, binding = 10) uniform usampler3D blocks1;
+layout(set = 0, binding = 11) uniform usampler3D blocks2;
+
+// Samples first..last of both runs `a` and `b` (first > last: none).
+vec2 unite(vec2 a, vec2 b) {
+    if (b.x > b.y) return a;
+    return a.x <= a.y ? vec2(min(a.x, b.x), max(a.y, b.y)) : b;
+}
+
+// The run of samples from k on: in slot i's box (its samples `box`), or up to
+// the first box that starts after k.
+void runFrom(float k, vec2 box, int i, inout int slot, inout float end) {
+    if (k >= box.x && k <= box.y) {
+        slot = i;
+        end = box.y; // the boxes do not overlap: no other starts before it ends
+    } else if (box.x > k && box.x <= box.y) {
+        end = min(end, box.x - 1.0);
+    }
+}
+
+// The samples in the operator's deformed box, as samplesBetween.
+vec2 operatorSamples(OperatorUniforms op, March m) {
+    vec3 origin = (op.worldToLocal * vec4(m.origin, 1.0)).xyz;
+    vec3 dir = mat3(op.worldToLocal) * m.dir; // the same t: the map is affine
+    vec2 t = rayThroughBox(origin, dir, op.mapLo.xyz, op.mapHi.xyz);
+    return t.x < t.y ? samplesBetween(m, t.x, t.y) : vec2(1.0, 0.0);
+}
+#endif
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(target);
+    if (pixel.x >= size.x || pixel.y >= size.y) return;
+    vec2 ndc = (vec2(pixel) + 0.5) / vec2(size) * 2.0 - 1.0;
+    vec4 nearH = ray.clipToWorld * vec4(ndc, 0.0, 1.0);
+    vec4 farH = ray.clipToWorld * vec4(ndc, 1.0, 1.0);
+    March m;
+    m.origin = nearH.xyz / nearH.w; // on the near plane: nothing in front of it is drawn
+    m.dir = normalize(farH.xyz / farH.w - m.origin);
+    m.toEye = -m.dir;
+    m.obliquity = obliquityOf(m.toEye);
+    m.spacing = u.viewDir.w;
+    m.fd = dot(u.viewDir.xyz, m.dir);
+    m.so = dot(u.viewDir.xyz, m.origin);
+
+    // The untouched volume's samples: those in the occupied cells' bounds.
+    vec2 t = rayThroughBox(m.origin, m.dir, ray.boxLo.xyz, ray.boxHi.xyz);
+    vec2 volume = t.x < t.y ? samplesBetween(m, t.x, t.y) : vec2(1.0, 0.0);
+    vec2 all = volume;
+#ifdef CW_RAY_OPERATORS
+    vec2 box0 = operatorSamples(slots.ops[0], m);
+    vec2 box1 = cwOperatorCount > 1 ? operatorSamples(slots.ops[1], m) : vec2(1.0, 0.0);
+    vec2 box2 = cwOperatorCount > 2 ? operatorSamples(slots.ops[2], m) : vec2(1.0, 0.0);
+    all = unite(unite(unite(all, box0), box1), box2);
+#endif
+    vec4 sum = vec4(0.0);
+    if (all.x <= all.y) {
+        m.first = all.x;
+        vec3 p = pointAt(m, m.first);
+        m.tcFirst = toTexture(p);
+        m.tcStep = toTexture(p + m.dir * (m.spacing * m.obliquity)) - m.tcFirst;
+        // The cells cover slabs up to cellsPerTexture.w voxels long.
+        vec3 voxelStep = abs(m.tcStep) * vec3(textureSize(volumeTex, 0));
+        m.slabsInMargin = max(voxelStep.x, max(voxelStep.y, voxelStep.z)) <= ray.cellsPerTexture.w;
+#ifdef CW_RAY_OPERATORS
+        // Runs: the samples in one operator's box, or between boxes.
+        float k = all.x;
+        while (k <= all.y && sum.a < CW_OPAQUE_ALPHA) {
+            int slot = -1;
+            float end = all.y;
+            runFrom(k, box0, 0, slot, end);
+            runFrom(k, box1, 1, slot, end);
+            runFrom(k, box2, 2, slot, end);
+            if (slot < 0) {
+                float from = max(k, volume.x), to = min(end, volume.y);
+                if (from <= to) backgroundRun(m, from, to, sum);
+            } else if (slot == 0) {
+                operatorRun(slots.ops[0], map0, feature0, blocks0, cwAlignment, m, k, end, sum);
+            } else if (cwOperatorCount > 1 && slot == 1) {
+                operatorRun(slots.ops[1], map1, feature1, blocks1, cwAlignment1, m, k, end, sum);
+            } else if (cwOperatorCount > 2) {
+                operatorRun(slots.ops[2], map2, feature2, blocks2, cwAlignment2, m, k, end, sum);
+            }
+            k = end + 1.0;
+        }
+#else
+        backgroundRun(m, all.x, all.y, sum);
+#endif
+    }
+    imageStore(target, pixel, sum);
+}
+
+#endif
