@@ -8,6 +8,7 @@
 #include "scene/scene_sections.hpp"
 #include "shared/operator_frame.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <fstream>
 #include <sstream>
@@ -178,10 +179,14 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
                               "classification by label needs \"operator_composition\": "
                               "\"separate\" when there are several operators");
     }
-    // The ray caster takes a few operators, and neither meshes nor ids.
+    // The ray caster takes a few live operators (under sequential composition
+    // only the last is), and neither meshes nor ids.
     if (scene.render.method == RenderMethod::Raycast) {
+        const bool sequential = scene.render.composition == Composition::Sequential;
+        const std::size_t live =
+            sequential ? std::min<std::size_t>(scene.operators.size(), 1) : scene.operators.size();
         const std::string what =
-            scene.operators.size() > CW_RAY_MAX_OPERATORS
+            live > CW_RAY_MAX_OPERATORS
                 ? "at most " + std::to_string(CW_RAY_MAX_OPERATORS) + " operators"
             : !scene.meshes.empty()   ? std::string("no meshes")
             : scene.output.operatorId ? std::string("no \"output\": {\"operator_id\": true}")

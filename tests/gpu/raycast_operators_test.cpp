@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -66,10 +67,21 @@ json withOperators(std::initializer_list<std::pair<const char*, const char*>> op
 
 class RaycastOperators : public GpuTest {
 protected:
+    void SetUp() override {
+        GpuTest::SetUp();
+        m_renderer = std::make_unique<job::FrameRenderer>(ctx());
+    }
+    void TearDown() override {
+        m_renderer.reset();
+        GpuTest::TearDown();
+    }
+    // One renderer for the test: the phantom is loaded and baked once, and
+    // each frame switches method, operators or alignment from the one before.
     Image render(json document, const char* method) {
         document["render"]["method"] = method;
-        return job::renderImage(ctx(), parseScene(document, "/nonexistent", "test"));
+        return m_renderer->render(parseScene(document, "/nonexistent", "test"));
     }
+    std::unique_ptr<job::FrameRenderer> m_renderer;
     // The share of pixels of `a` and `b` that differ by more than 2e-3.
     static double share(const Image& a, const Image& b) {
         std::size_t n = 0;
@@ -144,6 +156,14 @@ TEST_F(RaycastOperators, EachOperatorTakesItsOwnSlot) {
     EXPECT_LT(differingShare(scene, "peeler and dilator"), kFaceShare);
 }
 
+TEST_F(RaycastOperators, SequentialCompositionRaysTheLastOperator) {
+    // The scan is resampled through the dilator on the CPU; the rays and the
+    // slices see the result and the peeler alone.
+    json scene = withOperators({{kDilator, nullptr}, {kPeeler, kSurface}});
+    scene["render"]["operator_composition"] = "sequential";
+    EXPECT_LT(differingShare(scene, "sequential"), kFaceShare);
+}
+
 TEST_F(RaycastOperators, TheToleranceSeesAnOperatorGone) {
     // The comparisons above can fail: without the operator, or with another
     // alignment, far more pixels differ.
@@ -173,6 +193,8 @@ TEST_F(RaycastOperators, RefusesWhatOnlySlicingDraws) {
     EXPECT_NE(tooMany.find("at most " + std::to_string(CW_RAY_MAX_OPERATORS) + " operators"),
               std::string::npos)
         << tooMany;
+    four["render"]["operator_composition"] = "sequential";
+    EXPECT_EQ(refusal(four), "") << "under sequential composition only the last is live";
     json ids = phantomScene();
     ids["output"] = {{"operator_id", true}};
     EXPECT_NE(refusal(ids).find("operator_id"), std::string::npos) << refusal(ids);
