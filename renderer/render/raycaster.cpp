@@ -23,18 +23,20 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
     : m_ctx(ctx), m_linear(linear), m_nearest(nearest) {
     const auto cs = VK_SHADER_STAGE_COMPUTE_BIT;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    m_setLayout = gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
-                                             {1, sampled, 1, cs, nullptr},
-                                             {2, sampled, 1, cs, nullptr},
-                                             {3, sampled, 1, cs, nullptr},
-                                             {4, sampled, 1, cs, nullptr},
-                                             {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                             {6, sampled, 1, cs, nullptr},
-                                             {7, sampled, 1, cs, nullptr},
-                                             {8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
-                                             {9, sampled, 1, cs, nullptr},
-                                             {10, sampled, 1, cs, nullptr},
-                                             {11, sampled, 1, cs, nullptr}});
+    m_setLayout =
+        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
+                                   {1, sampled, 1, cs, nullptr},
+                                   {2, sampled, 1, cs, nullptr},
+                                   {3, sampled, 1, cs, nullptr},
+                                   {4, sampled, 1, cs, nullptr},
+                                   {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
+                                   {6, sampled, 1, cs, nullptr},
+                                   {7, sampled, 1, cs, nullptr},
+                                   {8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
+                                   {9, sampled, 1, cs, nullptr},
+                                   {10, sampled, 1, cs, nullptr},
+                                   {11, sampled, 1, cs, nullptr},
+                                   {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
     static_assert(CW_RAY_MAX_OPERATORS == 3, "one binding per slot's blocks: 9, 10, 11");
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
     std::vector<VkDescriptorSetLayout> sets(1 + CW_RAY_MAX_OPERATORS, operatorSetLayout);
@@ -45,14 +47,14 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                           VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
 }
 
-gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target,
+gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
                                    const std::vector<Operator>& operators) const {
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
                                                          {sampled, 9},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
     gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, in.values, ro, m_linear);
@@ -60,7 +62,9 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const gpu::Image& target,
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, in.transfer, ro, m_linear);
     gpu::writeImageDescriptor(m_ctx, set.set, 4, sampled, in.classes, ro, m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                              target.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+                              targets.color.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, set.set, 12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              targets.id.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, m_cells.distance.view.get(), ro,
                               m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 7, sampled, in.transferAlpha, ro, m_linear);
@@ -129,14 +133,16 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
     m_cells.key = key;
 }
 
-void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
+void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& targets,
                        const CameraMatrices& camera, const SliceVariant& variant,
                        const std::vector<Operator>& operators) {
     if (operators.size() > CW_RAY_MAX_OPERATORS)
         throw std::logic_error("the ray caster takes at most CW_RAY_MAX_OPERATORS operators");
-    gpu::transition(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    for (const gpu::Image* target : {&targets.color, &targets.id})
+        gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                        VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     const RayPush push{glm::mat4(glm::inverse(camera.viewProj)),
                        glm::vec4(glm::vec3(m_cells.bounds.lo), 0.0f),
                        glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f), m_cells.perTexture};
@@ -157,10 +163,13 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Imag
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,
                             static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    vkCmdDispatch(cmd, (target.extent.width + 7) / 8, (target.extent.height + 7) / 8, 1);
-    gpu::transition(cmd, target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    const VkExtent3D size = targets.color.extent;
+    vkCmdDispatch(cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+    for (const gpu::Image* target : {&targets.color, &targets.id})
+        gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
 }
 
 } // namespace cutaway::render

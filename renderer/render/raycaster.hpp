@@ -2,9 +2,9 @@
 // The ray-casting integrator (render.method "raycast"; docs/performance.md):
 // a compute pass, one invocation per pixel, that samples where the slicing
 // planes cross each ray and calls the slicing shaders' per-sample code, so
-// its images match slicing's (tests/gpu/raycast_test.cpp). Scenes with up
-// to CW_RAY_MAX_OPERATORS operators, without meshes or the operator-id
-// channel; the scene parser refuses the rest.
+// its images match slicing's (tests/gpu/raycast_test.cpp,
+// raycast_operators_test.cpp). Scenes with up to CW_RAY_MAX_OPERATORS live
+// operators and without meshes; the scene parser refuses the rest.
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
@@ -51,17 +51,25 @@ public:
         const shader::OperatorUniforms* uniforms;
         int alignment;
     };
+    /// What a frame writes: premultiplied colour over nothing (RGBA32F) and
+    /// the operator-id code of each pixel's first visible sample (R32F: 0
+    /// nothing visible, 2 the untouched volume, 3 + i operator i), both
+    /// storage images.
+    struct Targets {
+        const gpu::Image& color;
+        const gpu::Image& id;
+    };
     /// Set 0 of a frame with these `inputs` and `operators` (see record()).
-    gpu::DescriptorSet bind(const Inputs& inputs, const gpu::Image& target,
+    gpu::DescriptorSet bind(const Inputs& inputs, const Targets& targets,
                             const std::vector<Operator>& operators) const;
 
-    /// Records the pass: `target` (RGBA32F, storage) goes from UNDEFINED to
-    /// TRANSFER_SRC_OPTIMAL holding premultiplied colour over nothing.
-    /// The rays march through the occupied cells' bounds, stepping over the
-    /// empty cells, and through the `operators`' deformed boxes (at most
-    /// CW_RAY_MAX_OPERATORS, not overlapping), whose uniforms it copies into
-    /// a buffer of set 0 (binding 8): call before submitting, once per frame.
-    void record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& target,
+    /// Records the pass: both targets go from UNDEFINED to
+    /// TRANSFER_SRC_OPTIMAL. The rays march through the occupied cells'
+    /// bounds, stepping over the empty cells, and through the `operators`'
+    /// deformed boxes (at most CW_RAY_MAX_OPERATORS, not overlapping), whose
+    /// uniforms it copies into a buffer of set 0 (binding 8): call before
+    /// submitting, once per frame.
+    void record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& targets,
                 const CameraMatrices& camera, const SliceVariant& variant,
                 const std::vector<Operator>& operators);
 

@@ -107,6 +107,14 @@ gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuV
         readers);
 }
 
+// The operator_id channel's value for a pixel whose first visible sample
+// came from the proxy with this code (see CW_ID_BACKGROUND in
+// shaders/glsl/sample_common.h): -2 nothing visible, -1 the untouched volume,
+// i operator i.
+float operatorIdOf(float code, bool covered) {
+    return covered ? std::round(code) - 3.0f : -2.0f;
+}
+
 // A render-pass attachment cleared at the start: colour to transparent black,
 // depth to 1 and stencil to 0.
 VkRenderingAttachmentInfo clearedAttachment(VkImageView view, VkImageLayout layout,
@@ -565,7 +573,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         for (std::size_t p = 0; p < image.operatorIds.size(); ++p) {
             const float code = glm::unpackHalf1x16(halves[4 * p]);
             const float covered = glm::unpackHalf1x16(halves[4 * p + 3]);
-            image.operatorIds[p] = covered > 0.5f ? std::round(code) - 3.0f : -2.0f;
+            image.operatorIds[p] = operatorIdOf(code, covered > 0.5f);
         }
     }
     // The meshes are opaque and lie behind the volume in front of them.
@@ -592,6 +600,11 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         m_rayReadback = gpu::createBuffer(m_ctx, 16ull * width * height,
                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        m_rayId =
+            gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R32_SFLOAT, {width, height, 1},
+                             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+        m_rayIdReadback =
+            gpu::createBuffer(m_ctx, 4ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
     m_raycaster->prepareCells(volume, m_cellSpans ? &*m_cellSpans : nullptr, *m_visible,
                               m_occupancySerial, marginVoxels);
@@ -616,18 +629,31 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
                                    volume.values.view.get(),  volume.gradients.view.get(),
                                    transfer.view.get(),       m_classes.view.get(),
                                    m_transferAlpha.view.get()};
-    const gpu::DescriptorSet set = m_raycaster->bind(inputs, m_rayTarget, operators);
+    const Raycaster::Targets targets{m_rayTarget, m_rayId};
+    const gpu::DescriptorSet set = m_raycaster->bind(inputs, targets, operators);
+    const bool withId = variant.withOperatorId;
+    SliceVariant rays = variant; // the rays always write the ids; the copy is what costs
+    rays.withOperatorId = false;
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        m_raycaster->record(cmd, set.set, m_rayTarget, cam, variant, operators);
+        m_raycaster->record(cmd, set.set, targets, cam, rays, operators);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = m_rayTarget.extent;
         vkCmdCopyImageToBuffer(cmd, m_rayTarget.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                m_rayReadback.buffer.get(), 1, &region);
+        if (withId)
+            vkCmdCopyImageToBuffer(cmd, m_rayId.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                   m_rayIdReadback.buffer.get(), 1, &region);
         gpu::barrierTransferToHost(cmd);
     });
     Image image(static_cast<int>(width), static_cast<int>(height));
     std::memcpy(image.rgba.data(), m_rayReadback.mapped, image.rgba.size() * sizeof(float));
+    if (withId) {
+        const auto* codes = static_cast<const float*>(m_rayIdReadback.mapped);
+        image.operatorIds.resize(image.rgba.size() / 4);
+        for (std::size_t p = 0; p < image.operatorIds.size(); ++p)
+            image.operatorIds[p] = operatorIdOf(codes[p], codes[p] > 0.5f);
+    }
     return image;
 }
 

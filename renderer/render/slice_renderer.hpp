@@ -98,6 +98,8 @@ private:
     std::unique_ptr<Raycaster> m_raycaster;
     gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
     gpu::Buffer m_rayReadback;
+    gpu::Image m_rayId; ///< R32F storage image: each pixel's operator-id code
+    gpu::Buffer m_rayIdReadback;
     std::optional<SpanGrid> m_cellSpans;    ///< the ray caster's cells; the bricks' are their 2x2x2
                                             ///< unions (null: no host scan)
     std::vector<double> m_spanKey;          ///< volume, window, margin

@@ -180,7 +180,7 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
                               "\"separate\" when there are several operators");
     }
     // The ray caster takes a few live operators (under sequential composition
-    // only the last is), and neither meshes nor ids.
+    // only the last is), and no meshes.
     if (scene.render.method == RenderMethod::Raycast) {
         const bool sequential = scene.render.composition == Composition::Sequential;
         const std::size_t live =
@@ -188,9 +188,8 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
         const std::string what =
             live > CW_RAY_MAX_OPERATORS
                 ? "at most " + std::to_string(CW_RAY_MAX_OPERATORS) + " operators"
-            : !scene.meshes.empty()   ? std::string("no meshes")
-            : scene.output.operatorId ? std::string("no \"output\": {\"operator_id\": true}")
-                                      : std::string();
+            : !scene.meshes.empty() ? std::string("no meshes")
+                                    : std::string();
         if (!what.empty())
             diagnostics.error("/render/method",
                               "\"raycast\" renders scenes with " + what + "; use \"slicing\"");

@@ -29,6 +29,16 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
+// Which proxy the pixel's first visible sample came from (codes: see
+// CW_ID_BACKGROUND in sample_common.h), as slicing's operator-id attachment.
+layout(set = 0, binding = 12, r32f) uniform writeonly image2D idTarget;
+
+// Composites slab colour `c` from proxy `code` behind `sum`; the first
+// visible one names the pixel's proxy.
+void composite(vec4 c, float code, inout vec4 sum, inout float id) {
+    if (id == 0.0 && c.a >= CW_ID_MIN_ALPHA) id = code;
+    sum += (1.0 - sum.a) * c;
+}
 // One texel per cell of kRayCellVoxels^3 (render/ray_cells.hpp): 0 where the
 // cell is occupied; else r, and every cell within r - 1 of it (chessboard
 // distance) is empty: each sample there, and each slab up to the margin long
@@ -105,7 +115,7 @@ float slabAlpha(float front, float back, float layer) {
 }
 
 // Samples k0..k1 of the untouched volume, composited into `sum`.
-void backgroundRun(March m, float k0, float k1, inout vec4 sum) {
+void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) {
     float k = k0;
     vec3 tc = m.tcFirst + (k0 - m.first) * m.tcStep;
     vec3 tcStep = m.tcStep;
@@ -141,7 +151,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum) {
         vec4 c = classifySlab(front, cwPreintegrated ? next : front, m.obliquity, classLayer(tc));
         vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
         c = shade(c, textureLod(gradientTex, shadeAt, 0.0), m.toEye);
-        sum += (1.0 - sum.a) * c;
+        composite(c, CW_ID_BACKGROUND, sum, id);
         if (sum.a >= CW_OPAQUE_ALPHA) break;
         tc += tcStep;
         front = next;
@@ -173,7 +183,7 @@ float stepsOverEmptyBlocks(OperatorUniforms op, usampler3D blocks, March m, floa
 // Samples k0..k1, all in the operator's deformed box, composited into `sum`.
 // Each resolves one point: a slab's back is the next one's front.
 void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler3D blocks, int mode,
-                 March m, float k0, float k1, inout vec4 sum) {
+                 March m, float k0, float k1, inout vec4 sum, inout float id) {
     float stepMm = m.spacing * m.obliquity;
     float k = k0;
     Resolved front;
@@ -206,7 +216,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler
         bool moved;
         vec4 c = shadeOperatorSlab(op, map, feature, mode, s, pointAt(m, k), m.toEye, m.obliquity,
                                    stepMm, moved);
-        sum += (1.0 - sum.a) * c;
+        composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
         if (sum.a >= CW_OPAQUE_ALPHA) break;
         front = next;
         k += 1.0;
@@ -286,6 +296,7 @@ void main() {
     all = unite(unite(unite(all, box0), box1), box2);
 #endif
     vec4 sum = vec4(0.0);
+    float id = 0.0;
     if (all.x <= all.y) {
         m.first = all.x;
         vec3 p = pointAt(m, m.first);
@@ -305,21 +316,24 @@ void main() {
             runFrom(k, box2, 2, slot, end);
             if (slot < 0) {
                 float from = max(k, volume.x), to = min(end, volume.y);
-                if (from <= to) backgroundRun(m, from, to, sum);
+                if (from <= to) backgroundRun(m, from, to, sum, id);
             } else if (slot == 0) {
-                operatorRun(slots.ops[0], map0, feature0, blocks0, cwAlignment, m, k, end, sum);
+                operatorRun(slots.ops[0], map0, feature0, blocks0, cwAlignment, m, k, end, sum, id);
             } else if (cwOperatorCount > 1 && slot == 1) {
-                operatorRun(slots.ops[1], map1, feature1, blocks1, cwAlignment1, m, k, end, sum);
+                operatorRun(slots.ops[1], map1, feature1, blocks1, cwAlignment1, m, k, end, sum,
+                            id);
             } else if (cwOperatorCount > 2) {
-                operatorRun(slots.ops[2], map2, feature2, blocks2, cwAlignment2, m, k, end, sum);
+                operatorRun(slots.ops[2], map2, feature2, blocks2, cwAlignment2, m, k, end, sum,
+                            id);
             }
             k = end + 1.0;
         }
 #else
-        backgroundRun(m, all.x, all.y, sum);
+        backgroundRun(m, all.x, all.y, sum, id);
 #endif
     }
     imageStore(target, pixel, sum);
+    imageStore(idTarget, pixel, vec4(id));
 }
 
 #endif

@@ -30,6 +30,12 @@ layout(set = 0, binding = 2) uniform sampler3D gradientTex;
 layout(set = 0, binding = 3) uniform sampler2DArray transferTex;
 layout(set = 0, binding = 4) uniform usampler3D classTex;
 
+// The operator-id codes of the proxy a pixel's first visible sample came
+// from: 0 nothing visible, 2 the untouched volume, 3 + i operator i. A
+// sample is visible when its opacity reaches CW_ID_MIN_ALPHA.
+#define CW_ID_BACKGROUND 2.0
+#define CW_ID_MIN_ALPHA 0.01
+
 vec3 toTexture(vec3 world) {
     return (u.worldToTexture * vec4(world, 1.0)).xyz;
 }

@@ -13,9 +13,6 @@ layout(location = 0) out vec4 outColor;
 // 2 the untouched volume, 3 + i operator i (0 = nothing visible).
 layout(location = 1) out vec4 outId;
 #endif
-#define CW_ID_BACKGROUND 2.0
-// A sample is visible when its opacity reaches this.
-#define CW_ID_MIN_ALPHA 0.01
 
 void emit(vec4 color, float code) {
     outColor = color;

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <gtest/gtest.h>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -51,6 +52,10 @@ const char* const kPliers =
 const char* const kDilator =
     R"({ "type": "dilator", "placement": { "translate": [14, -14, 14], "scale": [12, 12, 12] },
          "params": { "magnification": 2.0 } })";
+// A smaller peeler, clear of kDilator.
+const char* const kSmallPeeler =
+    R"({ "type": "peeler", "placement": { "translate": [-13, 0, 22], "scale": [22, 36, 14] },
+         "params": { "hinge": -8, "thickness": 6, "angle": 100 } })";
 const char* const kSurface = R"({"mode": "surface", "threshold": 30, "depth": 3, "band": 2})";
 const char* const kSegment = R"({"mode": "segment", "labels": ["brain"], "band": 2})";
 
@@ -142,9 +147,7 @@ TEST_F(RaycastOperators, EachOperatorTakesItsOwnSlot) {
     // or more of the image (measured against the phantom without it): a slot
     // reading another's map, uniforms or alignment would change its region.
     json scene = withOperators(
-        {{R"({ "type": "peeler", "placement": { "translate": [-13, 0, 22], "scale": [22, 36, 14] },
-               "params": { "hinge": -8, "thickness": 6, "angle": 100 } })",
-          kSegment},
+        {{kSmallPeeler, kSegment},
          {R"({ "type": "dilator", "placement": { "translate": [14, -14, 14], "scale": [12, 12, 12] },
                "params": { "magnification": 2.0 } })",
           nullptr},
@@ -195,9 +198,30 @@ TEST_F(RaycastOperators, RefusesWhatOnlySlicingDraws) {
         << tooMany;
     four["render"]["operator_composition"] = "sequential";
     EXPECT_EQ(refusal(four), "") << "under sequential composition only the last is live";
-    json ids = phantomScene();
-    ids["output"] = {{"operator_id", true}};
-    EXPECT_NE(refusal(ids).find("operator_id"), std::string::npos) << refusal(ids);
+    json meshes = phantomScene();
+    meshes["meshes"] = json::parse(R"([{"file": "tool.glb"}])");
+    EXPECT_NE(refusal(meshes).find("no meshes"), std::string::npos) << refusal(meshes);
+}
+
+TEST_F(RaycastOperators, NameTheProxyOfEachPixelAsSlicingDoes) {
+    // output.operator_id: the proxy of each pixel's first visible sample (-2
+    // nothing, -1 the untouched volume, i operator i), the same but on the
+    // boxes' faces.
+    json scene = withOperators({{kSmallPeeler, kSurface}, {kDilator, nullptr}});
+    scene["output"] = {{"operator_id", true}};
+    const Image sliced = render(scene, "slicing");
+    const Image cast = render(scene, "raycast");
+    ASSERT_EQ(cast.operatorIds.size(), sliced.operatorIds.size());
+    std::map<float, int> seen;
+    std::size_t differing = 0;
+    for (std::size_t p = 0; p < cast.operatorIds.size(); ++p) {
+        ++seen[cast.operatorIds[p]];
+        differing += cast.operatorIds[p] != sliced.operatorIds[p];
+    }
+    EXPECT_LT(double(differing) / double(cast.operatorIds.size()), kFaceShare);
+    for (float id : {-2.0f, -1.0f, 0.0f, 1.0f})
+        EXPECT_GT(seen[id], 100) << "pixels of id " << id
+                                 << " (nothing, the volume, the operators)";
 }
 
 } // namespace
