@@ -80,7 +80,8 @@ def turntable_lines(records):
             continue
         single = next((r["fps"] for r in records if r.get("renderer") == "cutaway"
                        and r.get("kind") != "turntable" and r["dataset"] == t["dataset"]
-                       and r["alignment"] == "surface" and r["slice_spacing"] == 1.0), None)
+                       and r["alignment"] == "surface" and r["slice_spacing"] == 1.0
+                       and r.get("method", "slicing") == t.get("method", "slicing")), None)
         steady = (f" The first frame's files were written after {t['first_frame_s']:.1f} s "
                   f"(loading the scan, uploads, bakes); from there **{t['steady_fps']:.2f} fps "
                   f"sustained**." if "steady_fps" in t else "")
@@ -88,7 +89,8 @@ def turntable_lines(records):
             steady += (f" Single frames of the same scene timed just before and just after"
                        f" the turntable: {t['single_fps_before']:.2f} and"
                        f" {t['single_fps_after']:.2f} fps.")
-        out.append(f"Turntable: {t['dataset']}, surface-aligned operator, d = 1.0, "
+        out.append(f"Turntable: {t['dataset']}, surface-aligned operator, "
+                   f"{t.get('method', 'slicing')}, d = 1.0, "
                    f"{t['frames']} frames written as {t['writes']}: {t['total_s']:.1f} s in all, "
                    f"{t['sustained_fps']:.2f} fps with the first frame's loading and bakes, "
                    f"against {single:.2f} fps for single frames." + steady if single else "")

@@ -75,6 +75,7 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
                 {"kind", "turntable"},
                 {"dataset", entry.dataset},
                 {"alignment", "surface"},
+                {"method", scene.render.method == RenderMethod::Raycast ? "raycast" : "slicing"},
                 {"width", o.width},
                 {"height", o.height},
                 {"slice_spacing", 1.0},
@@ -98,18 +99,20 @@ void printTurntable(const nlohmann::json& records) {
         double single = 0.0;
         for (const nlohmann::json& r : records) {
             if (r.value("kind", "") != "turntable" && r["dataset"] == t["dataset"] &&
-                r["alignment"] == "surface" && r["slice_spacing"] == 1.0)
+                r["alignment"] == "surface" && r["slice_spacing"] == 1.0 &&
+                r.value("method", "slicing") == t.value("method", "slicing"))
                 single = r["fps"].get<double>();
         }
-        std::printf("\nturntable (%s, surface, d = 1.0, %d frames written as %s): %.1f s in all "
-                    "(%.2f fps), the first frame's files after %.1f s (loading and bakes), "
-                    "%.2f fps sustained from there; single frames: %.2f fps in the table, "
-                    "%.2f just before and %.2f just after the turntable\n",
-                    t["dataset"].get<std::string>().c_str(), t["frames"].get<int>(),
-                    t["writes"].get<std::string>().c_str(), t["total_s"].get<double>(),
-                    t["sustained_fps"].get<double>(), t["first_frame_s"].get<double>(),
-                    t["steady_fps"].get<double>(), single, t.value("single_fps_before", 0.0),
-                    t.value("single_fps_after", 0.0));
+        std::printf(
+            "\nturntable (%s, surface, %s, d = 1.0, %d frames written as %s): %.1f s in all "
+            "(%.2f fps), the first frame's files after %.1f s (loading and bakes), "
+            "%.2f fps sustained from there; single frames: %.2f fps in the table, "
+            "%.2f just before and %.2f just after the turntable\n",
+            t["dataset"].get<std::string>().c_str(), t.value("method", "slicing").c_str(),
+            t["frames"].get<int>(), t["writes"].get<std::string>().c_str(),
+            t["total_s"].get<double>(), t["sustained_fps"].get<double>(),
+            t["first_frame_s"].get<double>(), t["steady_fps"].get<double>(), single,
+            t.value("single_fps_before", 0.0), t.value("single_fps_after", 0.0));
     }
 }
 

@@ -30,7 +30,8 @@ FeatureFields::FeatureFields(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx)
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const uint16_t zero = 0; // one half float
     gpu::uploadImage(ctx, m_none, &zero, sizeof zero, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT);
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT); // slicing and the ray caster
 }
 
 double FeatureFields::threshold(const Alignment& alignment, const GpuVolume& volume) {

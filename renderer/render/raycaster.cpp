@@ -9,7 +9,7 @@
 namespace cutaway::render {
 namespace {
 
-struct RayPush { // matches the push constants of shaders/raycast.comp.glsl
+struct RayPush { // matches the push constants of shaders/glsl/ray_march.h
     glm::mat4 clipToWorld;
     glm::vec4 boxLo;
     glm::vec4 boxHi;

@@ -68,7 +68,8 @@ public:
     /// bounds, stepping over the empty cells, and through the `operators`'
     /// deformed boxes (at most CW_RAY_MAX_OPERATORS, not overlapping), whose
     /// uniforms it copies into a buffer of set 0 (binding 8): call before
-    /// submitting, once per frame.
+    /// submitting, once per frame, and let the frame finish before the next
+    /// record() (SliceRenderer submits and waits).
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& targets,
                 const CameraMatrices& camera, const SliceVariant& variant,
                 const std::vector<Operator>& operators);

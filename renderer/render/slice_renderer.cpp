@@ -364,6 +364,7 @@ void SliceRenderer::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
 Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const int width = scene.render.width, height = scene.render.height;
     m_operators->update(scene.operators, volume);
+    if (m_regions.size() > scene.operators.size()) m_regions.resize(scene.operators.size());
     Box bounds = volume.box; // the camera frames the operators too: a flap may leave the box
     for (const auto& op : m_operators->operators()) {
         bounds.lo = glm::min(bounds.lo, op->box.lo());
@@ -613,6 +614,18 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
     for (std::size_t i = 0; i < ops.size(); ++i) {
         const GpuOperator& op = *ops[i];
         Regions& regions = regionsFor(i, op, reachMm);
+        if (!m_operatorSkipping) { // one active block over the whole box
+            if (!m_noSkipping.image) {
+                const uint8_t active = 0;
+                m_noSkipping =
+                    gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {1, 1, 1}, &active, 1,
+                                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+            }
+            operators.push_back({op.set.set, m_noSkipping.view.get(),
+                                 static_cast<const shader::OperatorUniforms*>(op.uniforms.mapped),
+                                 alignmentCode(op.spec.alignment.mode)});
+            continue;
+        }
         if (!regions.distance.image) {
             const glm::uvec3 n(regions.blocks.dims);
             const std::vector<uint8_t> distance =

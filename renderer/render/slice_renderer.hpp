@@ -48,8 +48,9 @@ public:
 
     const FrameStats& lastStats() const { return m_stats; }
     /// Whether operator shaders run only where something can show
-    /// (render/operator_regions.hpp; on by default). Off, they run over the
-    /// whole deformed box, as the tests that compare the two need.
+    /// (render/operator_regions.hpp; on by default): slicing shades only the
+    /// regions, rays step over the empty blocks. Off, they run over the whole
+    /// deformed box, as the tests that compare the two need.
     void setOperatorSkipping(bool on) { m_operatorSkipping = on; }
     /// Feature-field bakes since the last call, one line each (see FeatureFields).
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
@@ -110,6 +111,7 @@ private:
     uint64_t m_occupancySerial = 0; ///< counts remakes of m_occupancy
     std::vector<Regions> m_regions; ///< per operator
     bool m_operatorSkipping = true;
+    gpu::Image m_noSkipping; ///< the ray caster's blocks when skipping is off: one, active
     /// What each proxy of the frame is: operator `op`'s stencil box or one of
     /// its regions, or (op < 0) a box of the volume's occupied bricks.
     struct ProxyRole {

@@ -74,7 +74,9 @@ struct Resolved {
     float mPrime;
 };
 
-// Eq. 3 and 4 for the point p' = world, and the volume's value at p.
+// Eq. 3 and 4 for the point p' = world, and the volume's value at p (fetched
+// for an empty point too: on lavapipe a branch around it would cost as much,
+// and the ray caster keeps the value as the next slab's front).
 Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int mode, vec3 world) {
     vec4 p0 = probe(op, map, world);
     vec3 tc0 = toTexture(p0.xyz);

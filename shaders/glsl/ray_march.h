@@ -88,6 +88,16 @@ vec2 rayThroughBox(vec3 origin, vec3 dir, vec3 lo, vec3 hi) {
     return vec2(max(max(tMin.x, tMin.y), max(tMin.z, 0.0)), min(min(tMax.x, tMax.y), tMax.z));
 }
 
+// How many steps of `step` (in cells) a ray at `at` (in cells, inside `cell`)
+// takes to leave the cube of empty cells [cell - (r - 1), cell + r): the
+// first sample past its wall, at least 1.
+float stepsToLeave(vec3 at, ivec3 cell, uint r, vec3 step) {
+    vec3 wall =
+        vec3(cell) + mix(vec3(1.0 - float(r)), vec3(float(r)), greaterThan(step, vec3(0.0)));
+    vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
+    return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
+}
+
 // How many steps of `tcStep` from `tc` until the ray leaves the cube of empty
 // cells around the cell it is in, when that cell is empty and the ray's slabs
 // are no longer than the cells' margin; 0 otherwise. Never steps past a sample
@@ -98,11 +108,7 @@ float stepsOverEmpty(vec3 tc, vec3 tcStep, bool slabsInMargin) {
     ivec3 cell = clamp(ivec3(floor(at)), ivec3(0), textureSize(cellTex, 0) - 1);
     uint free = texelFetch(cellTex, cell, 0).r;
     if (!slabsInMargin || free == 0u) return 0.0;
-    vec3 step = tcStep * ray.cellsPerTexture.xyz;
-    float r = float(free); // the empty cube: cells [cell - (r - 1), cell + r)
-    vec3 wall = vec3(cell) + mix(vec3(1.0 - r), vec3(r), greaterThan(step, vec3(0.0)));
-    vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
-    return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
+    return stepsToLeave(at, cell, free, tcStep * ray.cellsPerTexture.xyz);
 }
 
 // The table's alpha for the slab from `front` to `back`: classifySlab's
@@ -166,18 +172,15 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
 // its point, shows nothing; each holds its chessboard distance r to the
 // nearest active block, 0 when active): 0 when that block is active. Like
 // stepsOverEmpty, never past a sample outside the cube.
-float stepsOverEmptyBlocks(OperatorUniforms op, usampler3D blocks, March m, float k) {
-    vec3 span = op.mapHi.xyz - op.mapLo.xyz;
+// `blockStep`: the step from one sample to the next, in blocks.
+float stepsOverEmptyBlocks(OperatorUniforms op, usampler3D blocks, March m, float k,
+                           vec3 blockStep) {
     vec3 q = (op.worldToLocal * vec4(pointAt(m, k), 1.0)).xyz;
-    vec3 at = (q - op.mapLo.xyz) / span * op.blocks.xyz;
+    vec3 at = (q - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz) * op.blocks.xyz;
     ivec3 block = clamp(ivec3(floor(at)), ivec3(0), textureSize(blocks, 0) - 1);
     uint free = texelFetch(blocks, block, 0).r;
     if (free == 0u) return 0.0;
-    vec3 step = mat3(op.worldToLocal) * (m.dir * (m.spacing / m.fd)) / span * op.blocks.xyz;
-    float r = float(free);
-    vec3 wall = vec3(block) + mix(vec3(1.0 - r), vec3(r), greaterThan(step, vec3(0.0)));
-    vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
-    return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
+    return stepsToLeave(at, block, free, blockStep);
 }
 
 // Samples k0..k1, all in the operator's deformed box, composited into `sum`.
@@ -185,6 +188,8 @@ float stepsOverEmptyBlocks(OperatorUniforms op, usampler3D blocks, March m, floa
 void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler3D blocks, int mode,
                  March m, float k0, float k1, inout vec4 sum, inout float id) {
     float stepMm = m.spacing * m.obliquity;
+    vec3 blockStep = mat3(op.worldToLocal) * (m.dir * (m.spacing / m.fd)) /
+                     (op.mapHi.xyz - op.mapLo.xyz) * op.blocks.xyz;
     float k = k0;
     Resolved front;
     bool haveFront = false; // false at first and after stepping over empty blocks
@@ -193,8 +198,10 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler
         // lookup of the table's alpha.
         Resolved next;
         Slab s;
+        // One resolve per pass for every lane (of the front after a jump, or
+        // of the next back), so lanes in lock-step keep together.
         while (k <= k1) {
-            float skip = stepsOverEmptyBlocks(op, blocks, m, k);
+            float skip = stepsOverEmptyBlocks(op, blocks, m, k, blockStep);
             if (skip > 0.0) {
                 k += skip;
                 haveFront = false;
@@ -288,17 +295,17 @@ void main() {
     // The untouched volume's samples: those in the occupied cells' bounds.
     vec2 t = rayThroughBox(m.origin, m.dir, ray.boxLo.xyz, ray.boxHi.xyz);
     vec2 volume = t.x < t.y ? samplesBetween(m, t.x, t.y) : vec2(1.0, 0.0);
-    vec2 all = volume;
+    vec2 samples = volume;
 #ifdef CW_RAY_OPERATORS
     vec2 box0 = operatorSamples(slots.ops[0], m);
     vec2 box1 = cwOperatorCount > 1 ? operatorSamples(slots.ops[1], m) : vec2(1.0, 0.0);
     vec2 box2 = cwOperatorCount > 2 ? operatorSamples(slots.ops[2], m) : vec2(1.0, 0.0);
-    all = unite(unite(unite(all, box0), box1), box2);
+    samples = unite(unite(unite(samples, box0), box1), box2);
 #endif
     vec4 sum = vec4(0.0);
     float id = 0.0;
-    if (all.x <= all.y) {
-        m.first = all.x;
+    if (samples.x <= samples.y) {
+        m.first = samples.x;
         vec3 p = pointAt(m, m.first);
         m.tcFirst = toTexture(p);
         m.tcStep = toTexture(p + m.dir * (m.spacing * m.obliquity)) - m.tcFirst;
@@ -307,10 +314,10 @@ void main() {
         m.slabsInMargin = max(voxelStep.x, max(voxelStep.y, voxelStep.z)) <= ray.cellsPerTexture.w;
 #ifdef CW_RAY_OPERATORS
         // Runs: the samples in one operator's box, or between boxes.
-        float k = all.x;
-        while (k <= all.y && sum.a < CW_OPAQUE_ALPHA) {
+        float k = samples.x;
+        while (k <= samples.y && sum.a < CW_OPAQUE_ALPHA) {
             int slot = -1;
-            float end = all.y;
+            float end = samples.y;
             runFrom(k, box0, 0, slot, end);
             runFrom(k, box1, 1, slot, end);
             runFrom(k, box2, 2, slot, end);
@@ -329,7 +336,7 @@ void main() {
             k = end + 1.0;
         }
 #else
-        backgroundRun(m, all.x, all.y, sum, id);
+        backgroundRun(m, samples.x, samples.y, sum, id);
 #endif
     }
     imageStore(target, pixel, sum);

@@ -100,7 +100,7 @@ protected:
     }
     // Renders `scene` both ways; returns the share of pixels that differ by
     // more than the ray caster's tolerance without operators (2e-3: early
-    // termination and rounding), and checks the mean difference. `cast`
+    // termination and rounding), and checks the mean difference. `castOut`
     // receives the ray caster's image.
     double differingShare(const json& scene, const std::string& what, Image* castOut = nullptr) {
         const Image sliced = render(scene, "slicing");
@@ -143,18 +143,23 @@ TEST_F(RaycastOperators, MatchSlicingPostClassifiedAndWithLongSlabs) {
 }
 
 TEST_F(RaycastOperators, EachOperatorTakesItsOwnSlot) {
-    // Three operators of different kinds and alignments, each changing 2.5 %
-    // or more of the image (measured against the phantom without it): a slot
-    // reading another's map, uniforms or alignment would change its region.
+    // Three operators of different kinds and alignments, each of which shows
+    // (the image without it differs): a slot reading another's map, uniforms
+    // or alignment would change its region.
     json scene = withOperators(
         {{kSmallPeeler, kSegment},
-         {R"({ "type": "dilator", "placement": { "translate": [14, -14, 14], "scale": [12, 12, 12] },
-               "params": { "magnification": 2.0 } })",
-          nullptr},
+         {kDilator, nullptr},
          {R"({ "type": "retractor", "placement": { "translate": [14, 12, 20], "scale": [14, 14, 14] },
                "params": { "opening": 10 } })",
           kSurface}});
-    EXPECT_LT(differingShare(scene, "peeler, dilator and retractor"), kFaceShare);
+    Image all;
+    EXPECT_LT(differingShare(scene, "peeler, dilator and retractor", &all), kFaceShare);
+    for (std::size_t i = 0; i < 3; ++i) {
+        json without = scene;
+        without["operators"].erase(i);
+        EXPECT_GT(share(render(without, "raycast"), all), 2.0 * kFaceShare)
+            << "operator " << i << " must show";
+    }
     scene["operators"].erase(2);
     EXPECT_LT(differingShare(scene, "peeler and dilator"), kFaceShare);
 }
