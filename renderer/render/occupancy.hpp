@@ -36,6 +36,9 @@ public:
     /// have opacity: some bin from floor(lo * (n - 1)) to ceil(hi * (n - 1))
     /// (the table's linear filtering) is visible for some function.
     bool anyIn(float lo, float hi) const;
+    /// The visible bins before each bin: entry i counts bins [0, i), so
+    /// anyIn is upTo[end] > upTo[first] (what the ray caster reads).
+    const std::vector<int>& upTo() const { return m_upTo; }
 
 private:
     std::vector<int> m_upTo; ///< visible bins in [0, i)

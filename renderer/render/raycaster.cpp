@@ -4,6 +4,7 @@
 #include "raycast_operators_comp.spv.h"
 #include "render/ray_cells.hpp"
 
+#include <cstring>
 #include <stdexcept>
 
 namespace cutaway::render {
@@ -31,12 +32,12 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                    {4, sampled, 1, cs, nullptr},
                                    {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
                                    {6, sampled, 1, cs, nullptr},
-                                   {7, sampled, 1, cs, nullptr},
                                    {8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
                                    {9, sampled, 1, cs, nullptr},
                                    {10, sampled, 1, cs, nullptr},
                                    {11, sampled, 1, cs, nullptr},
-                                   {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
+                                   {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
+                                   {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr}});
     static_assert(CW_RAY_MAX_OPERATORS == 3, "one binding per slot's blocks: 9, 10, 11");
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
     std::vector<VkDescriptorSetLayout> sets(1 + CW_RAY_MAX_OPERATORS, operatorSetLayout);
@@ -53,8 +54,9 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-                                                         {sampled, 9},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}});
+                                                         {sampled, 8},
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
     gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, in.values, ro, m_linear);
@@ -65,9 +67,10 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
                               targets.color.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeImageDescriptor(m_ctx, set.set, 12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                               targets.id.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeBufferDescriptor(m_ctx, set.set, 13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                               m_visible.buffer.get(), m_visible.size);
     gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, m_cells.distance.view.get(), ro,
                               m_nearest);
-    gpu::writeImageDescriptor(m_ctx, set.set, 7, sampled, in.transferAlpha, ro, m_linear);
     gpu::writeBufferDescriptor(m_ctx, set.set, 8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                m_operatorUniforms.buffer.get(), m_operatorUniforms.size);
     // Slots without an operator repeat the first one's, or the cells' (unread,
@@ -114,6 +117,12 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
                              const VisibleValues& visible, uint64_t occupancySerial, int margin) {
     const std::pair<uint64_t, int> key(occupancySerial, margin);
     if (m_cells.distance.image && m_cells.key == key) return;
+    const std::vector<int>& upTo = visible.upTo();
+    const VkDeviceSize visibleBytes = upTo.size() * sizeof(int);
+    if (m_visible.size != visibleBytes)
+        m_visible =
+            gpu::createBuffer(m_ctx, visibleBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    std::memcpy(m_visible.mapped, upTo.data(), visibleBytes);
     m_cells.distance = {}; // freed before its successor is made
     // Without the scan on the host: one occupied cell, the whole box.
     RayCells cells{glm::ivec3(1), {1}, {0}, glm::ivec3(0), glm::ivec3(1)};

@@ -33,7 +33,6 @@ public:
         VkBuffer uniforms;
         VkDeviceSize uniformBytes;
         VkImageView values, gradients, transfer, classes;
-        VkImageView transferAlpha; ///< the table's alpha alone (R16F)
     };
     /// Remakes the empty-space cells (ray_cells.hpp) the rays step over when
     /// `occupancySerial` (what `visible` was made for) or the margin for the
@@ -86,6 +85,7 @@ private:
     gpu::PipelineLayoutHandle m_operatorLayout; ///< set 0, then one set per operator slot
     std::map<std::pair<SliceVariant, std::vector<int>>, gpu::PipelineHandle> m_pipelines;
     gpu::Buffer m_operatorUniforms; ///< CW_RAY_MAX_OPERATORS OperatorUniforms, host-mapped
+    gpu::Buffer m_visible;          ///< VisibleValues::upTo of the cells' classification
     struct Cells {
         gpu::Image distance;                ///< R8_UINT, RayCells::distance
         glm::vec4 perTexture{0.0f};         ///< xyz: cells across the texture; w: the longest slab

@@ -47,46 +47,31 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
 
 // The classification tables, one layer per transfer function (/transfer, then
 // /transfer/labels): the 1D function (post-classification) or its
-// pre-integrated 2D table for slabs one slice spacing thick. Also their alpha
-// alone (R16F, the same half values): the ray caster's transparent runs look
-// up only that, a quarter of the texel (docs/performance.md).
-struct TransferImages {
-    gpu::Image table, alpha;
-};
-
-TransferImages uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
-                              double sliceMm) {
+// pre-integrated 2D table for slabs one slice spacing thick.
+gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
+                          double sliceMm) {
     const std::vector<const TransferFunction*> functions =
         classifyingTransfers(scene, volume.labels != nullptr);
     const bool preintegrated = scene.render.classification == Classification::Preintegrated;
     const uint32_t width = preintegrated ? kPreintegrationSize : kTransferTableSize;
     const uint32_t height = preintegrated ? kPreintegrationSize : 1;
     std::vector<uint64_t> halves;
-    std::vector<uint16_t> alphas;
     halves.reserve(std::size_t(width) * height * functions.size());
-    alphas.reserve(halves.capacity());
     for (const TransferFunction* tf : functions) {
         std::vector<glm::vec4> table = tabulateTransfer(*tf, volume.window);
         if (preintegrated) table = preintegrate(table, volume.smallestSpacing(), sliceMm);
-        for (const glm::vec4& entry : table) {
+        for (const glm::vec4& entry : table)
             halves.push_back(glm::packHalf4x16(entry));
-            alphas.push_back(glm::packHalf1x16(entry.w));
-        }
     }
     const auto layers = static_cast<uint32_t>(functions.size());
     const auto usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     const auto stages = VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT; // slicing and ray casting
-    TransferImages images;
-    images.table =
+    gpu::Image table =
         gpu::createImageArray(ctx, VK_FORMAT_R16G16B16A16_SFLOAT, {width, height}, layers, usage);
-    gpu::uploadImage(ctx, images.table, halves.data(), halves.size() * sizeof(uint64_t),
+    gpu::uploadImage(ctx, table, halves.data(), halves.size() * sizeof(uint64_t),
                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, stages);
-    images.alpha = gpu::createImageArray(ctx, VK_FORMAT_R16_SFLOAT, {width, height}, layers, usage);
-    gpu::uploadImage(ctx, images.alpha, alphas.data(), alphas.size() * sizeof(uint16_t),
-                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                     VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    return images;
+    return table;
 }
 
 // Each voxel's classification layer (R8_UINT), or a single 0 without labels.
@@ -446,9 +431,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         }
     }
     if (!m_transfer.image || transferKey != m_transferKey) {
-        TransferImages images = uploadTransfer(m_ctx, scene, volume, sliceMm);
-        m_transfer = std::move(images.table);
-        m_transferAlpha = std::move(images.alpha);
+        m_transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
         m_transferKey = std::move(transferKey);
     }
     if (!m_classes.image || classKey != m_classesKey) {
@@ -638,10 +621,9 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
                              static_cast<const shader::OperatorUniforms*>(op.uniforms.mapped),
                              alignmentCode(op.spec.alignment.mode)});
     }
-    const Raycaster::Inputs inputs{m_uniforms.buffer.get(),   sizeof(shader::FrameUniforms),
-                                   volume.values.view.get(),  volume.gradients.view.get(),
-                                   transfer.view.get(),       m_classes.view.get(),
-                                   m_transferAlpha.view.get()};
+    const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
+                                   volume.values.view.get(), volume.gradients.view.get(),
+                                   transfer.view.get(),      m_classes.view.get()};
     const Raycaster::Targets targets{m_rayTarget, m_rayId};
     const gpu::DescriptorSet set = m_raycaster->bind(inputs, targets, operators);
     const bool withId = variant.withOperatorId;

@@ -128,7 +128,6 @@ private:
     gpu::Image m_depthStencil;
     gpu::Buffer m_readback;
     gpu::Image m_transfer;             ///< classification table, remade when its inputs change
-    gpu::Image m_transferAlpha;        ///< its alpha alone (R16F), for the ray caster
     std::vector<double> m_transferKey; ///< those inputs (pre-integration costs ~170 ms)
     gpu::Image m_classes;              ///< each voxel's classification layer (R8_UINT)
     std::vector<double> m_classesKey;  ///< the volume and the label lists it came from

@@ -44,9 +44,12 @@ void composite(vec4 c, float code, inout vec4 sum, inout float id) {
 // distance) is empty: each sample there, and each slab up to the margin long
 // that starts there, is transparent.
 layout(set = 0, binding = 6) uniform usampler3D cellTex;
-// transferTex's alpha alone (the same half values, R16F): transparent runs
-// look up only that; the whole texel is read once a slab shows.
-layout(set = 0, binding = 7) uniform sampler2DArray alphaTex;
+// Which bins of the classification tables any layer shows (VisibleValues,
+// render/occupancy.hpp): visibleUpTo[i] counts the visible bins before bin i.
+// Transparent runs ask only that; the table is read once a slab may show.
+layout(std430, set = 0, binding = 13) readonly buffer Visible {
+    int visibleUpTo[];
+};
 layout(push_constant) uniform Ray {
     mat4 clipToWorld;
     vec4 boxLo; // the occupied cells' bounds (world, mm)
@@ -111,13 +114,16 @@ float stepsOverEmpty(vec3 tc, vec3 tcStep, bool slabsInMargin) {
     return stepsToLeave(at, cell, free, tcStep * ray.cellsPerTexture.xyz);
 }
 
-// The table's alpha for the slab from `front` to `back`: classifySlab's
-// lookup before the opacity correction, the same half values filtered alike,
-// so 0 exactly where the table gives classifySlab no opacity.
-float slabAlpha(float front, float back, float layer) {
-    vec2 at = cwPreintegrated ? vec2(front, back) * u.valueToTf.x + u.valueToTf.y
-                              : vec2(front * u.valueToTf.x + u.valueToTf.y, 0.5);
-    return textureLod(alphaTex, vec3(at, layer), 0.0).r;
+// Whether a slab from value `front` to `back` may show: some bin of the table
+// between them (and their neighbours: the lookup filters) is visible for
+// some classification. Conservative where the lookup is exact; it costs two
+// buffer reads instead of a filtered texture fetch.
+bool mayShow(float front, float back) {
+    int bins = visibleUpTo.length() - 1;
+    float last = float(bins - 1);
+    int first = clamp(int(floor(min(front, back) * last)), 0, bins - 1);
+    int end = clamp(int(ceil(max(front, back) * last)), 0, bins - 1) + 1;
+    return visibleUpTo[end] > visibleUpTo[first];
 }
 
 // Samples k0..k1 of the untouched volume, composited into `sum`.
@@ -128,8 +134,8 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
     float front = textureLod(volumeTex, tc, 0.0).r;
     bool haveFront = true; // false after stepping over empty cells
     while (k <= k1) {
-        // Transparent slabs cost a volume fetch and a lookup of the table's
-        // alpha, empty cells a cell lookup; the whole table texel, the
+        // Transparent slabs cost a volume fetch and a visibility test
+        // (mayShow), empty cells a cell lookup; the whole table texel, the
         // gradient and the lighting run once every lane is at a visible slab
         // or done.
         float next = 0.0;
@@ -148,7 +154,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
                 continue;
             }
             next = value;
-            if (slabAlpha(front, cwPreintegrated ? next : front, classLayer(tc)) > 0.0) break;
+            if (mayShow(front, cwPreintegrated ? next : front)) break;
             tc += tcStep;
             front = next;
             k += 1.0;
@@ -195,7 +201,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler
     bool haveFront = false; // false at first and after stepping over empty blocks
     while (k <= k1) {
         // Empty blocks cost a block lookup, transparent slabs a resolve and a
-        // lookup of the table's alpha.
+        // visibility test (mayShow).
         Resolved next;
         Slab s;
         // One resolve per pass for every lane (of the front after a jump, or
@@ -214,8 +220,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler
                 continue;
             }
             s = operatorSlab(front, cwPreintegrated ? next : front);
-            if (!s.empty && slabAlpha(s.frontValue, s.backValue, classLayer(s.middle.tc)) > 0.0)
-                break;
+            if (!s.empty && mayShow(s.frontValue, s.backValue)) break;
             front = next;
             k += 1.0;
         }

@@ -66,10 +66,10 @@ TEST_F(Raycast, MatchesSlicingPreintegratedAndPost) {
     expectSameAsSlicing(scene, "post-classified, d = 0.5");
 }
 
-TEST_F(Raycast, TransparentRunsAskTheTablesAlphaAlone) {
-    // The rays look up only the alpha while nothing shows, then the whole
-    // texel: colours without red (or green, or blue) must show all the same,
-    // in both classifications.
+TEST_F(Raycast, TransparentRunsAskOnlyWhetherASlabCanShow) {
+    // While nothing shows the rays ask only which values can (mayShow), then
+    // read the whole table texel: colours without red (or green, or blue)
+    // must show all the same, in both classifications.
     json scene = headScene();
     scene.erase("labels");
     scene["transfer"] = json::parse(R"({"points": [{"value": 0, "color": [0, 0.6, 1], "alpha": 0},
