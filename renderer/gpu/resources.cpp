@@ -111,6 +111,18 @@ Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExten
                      type == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D);
 }
 
+ImageViewHandle createAspectView(const Context& ctx, const Image& image,
+                                 VkImageAspectFlags aspect) {
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image.image.get();
+    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = image.format;
+    viewInfo.subresourceRange = {aspect, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateImageView(ctx.device(), &viewInfo, nullptr, &view));
+    return ImageViewHandle(ctx.device(), view);
+}
+
 Image createImageArray(const Context& ctx, VkFormat format, VkExtent2D extent, uint32_t layers,
                        VkImageUsageFlags usage) {
     if (layers > ctx.properties().limits.maxImageArrayLayers)

@@ -37,6 +37,10 @@ struct Image {
 Image createImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3D extent,
                   VkImageUsageFlags usage, VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
 
+/// Another 2D view of `image` showing only `aspect` (the depth of a
+/// depth-stencil image, to sample it).
+ImageViewHandle createAspectView(const Context& ctx, const Image& image, VkImageAspectFlags aspect);
+
 /// A device-local 2D array image of `layers` layers with a 2D_ARRAY view
 /// (also for one layer, so shaders can declare a sampler2DArray).
 Image createImageArray(const Context& ctx, VkFormat format, VkExtent2D extent, uint32_t layers,

@@ -37,7 +37,8 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                    {10, sampled, 1, cs, nullptr},
                                    {11, sampled, 1, cs, nullptr},
                                    {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                   {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr}});
+                                   {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
+                                   {14, sampled, 1, cs, nullptr}});
     static_assert(CW_RAY_MAX_OPERATORS == 3, "one binding per slot's blocks: 9, 10, 11");
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
     std::vector<VkDescriptorSetLayout> sets(1 + CW_RAY_MAX_OPERATORS, operatorSetLayout);
@@ -54,7 +55,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-                                                         {sampled, 8},
+                                                         {sampled, 9},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
@@ -69,6 +70,8 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
                               targets.id.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeBufferDescriptor(m_ctx, set.set, 13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                m_visible.buffer.get(), m_visible.size);
+    gpu::writeImageDescriptor(m_ctx, set.set, 14, sampled, in.meshDepth, in.meshDepthLayout,
+                              m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, m_cells.distance.view.get(), ro,
                               m_nearest);
     gpu::writeBufferDescriptor(m_ctx, set.set, 8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,

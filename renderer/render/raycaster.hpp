@@ -4,7 +4,8 @@
 // planes cross each ray and calls the slicing shaders' per-sample code, so
 // its images match slicing's (tests/gpu/raycast_test.cpp,
 // raycast_operators_test.cpp). Scenes with up to CW_RAY_MAX_OPERATORS live
-// operators and without meshes; the scene parser refuses the rest.
+// operators (the scene parser refuses more); meshes are drawn before it, and
+// their depth ends the rays.
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
@@ -33,6 +34,10 @@ public:
         VkBuffer uniforms;
         VkDeviceSize uniformBytes;
         VkImageView values, gradients, transfer, classes;
+        /// The meshes' depth (a depth-only view, DEPTH_STENCIL_READ_ONLY_OPTIMAL),
+        /// or any 2D float image of 1 (SHADER_READ_ONLY_OPTIMAL) without meshes.
+        VkImageView meshDepth;
+        VkImageLayout meshDepthLayout;
     };
     /// Remakes the empty-space cells (ray_cells.hpp) the rays step over when
     /// `occupancySerial` (what `visible` was made for) or the margin for the

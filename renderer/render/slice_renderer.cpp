@@ -474,7 +474,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     if (raycast) {
-        Image image = renderRaycast(cam, volume, transfer, variant, margin, reachMm);
+        Image image = renderRaycast(cam, volume, transfer, variant, margin, reachMm, set.set);
         compositeUnder(image, scene.render.background);
         return image;
     }
@@ -560,23 +560,35 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
             image.operatorIds[p] = operatorIdOf(code, covered > 0.5f);
         }
     }
-    // The meshes are opaque and lie behind the volume in front of them.
-    if (withMeshes) {
-        const Image meshes = readImage(m_ctx, m_meshReadback, width, height);
-        for (std::size_t i = 0; i < pixels; i += 4) {
-            const float t = 1.0f - image.rgba[i + 3];
-            for (int c = 0; c < 4; ++c)
-                image.rgba[i + c] += t * meshes.rgba[i + c];
-        }
-    }
+    if (withMeshes) compositeMeshes(image);
     compositeUnder(image, scene.render.background);
     return image;
 }
 
 Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                                    const gpu::Image& transfer, const SliceVariant& variant,
-                                   int marginVoxels, double reachMm) {
+                                   int marginVoxels, double reachMm, VkDescriptorSet frameSet) {
     const uint32_t width = m_color.extent.width, height = m_color.extent.height;
+    const bool withMeshes = !m_meshes->empty();
+    // The meshes' depth ends the rays: a depth-stencil target the rays can
+    // sample (the slicing one need not be), or a 1 everywhere without meshes.
+    if (withMeshes && (!m_rayDepth.image || m_rayDepth.extent.width != width ||
+                       m_rayDepth.extent.height != height)) {
+        m_rayDepth = gpu::createImage(
+            m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil, {width, height, 1},
+            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+            VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
+        m_rayDepthView = gpu::createAspectView(m_ctx, m_rayDepth, VK_IMAGE_ASPECT_DEPTH_BIT);
+    }
+    if (!withMeshes && !m_noMeshDepth.image) {
+        m_noMeshDepth =
+            gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R32_SFLOAT, {1, 1, 1},
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        const float far = 1.0f;
+        gpu::uploadImage(m_ctx, m_noMeshDepth, &far, sizeof far,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    }
     if (!m_rayTarget.image || m_rayTarget.extent.width != width ||
         m_rayTarget.extent.height != height) {
         m_rayTarget = gpu::createImage(
@@ -621,19 +633,52 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
                              static_cast<const shader::OperatorUniforms*>(op.uniforms.mapped),
                              alignmentCode(op.spec.alignment.mode)});
     }
-    const Raycaster::Inputs inputs{m_uniforms.buffer.get(),  sizeof(shader::FrameUniforms),
-                                   volume.values.view.get(), volume.gradients.view.get(),
-                                   transfer.view.get(),      m_classes.view.get()};
+    const Raycaster::Inputs inputs{m_uniforms.buffer.get(),
+                                   sizeof(shader::FrameUniforms),
+                                   volume.values.view.get(),
+                                   volume.gradients.view.get(),
+                                   transfer.view.get(),
+                                   m_classes.view.get(),
+                                   withMeshes ? m_rayDepthView.get() : m_noMeshDepth.view.get(),
+                                   withMeshes ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                                              : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const Raycaster::Targets targets{m_rayTarget, m_rayId};
     const gpu::DescriptorSet set = m_raycaster->bind(inputs, targets, operators);
     const bool withId = variant.withOperatorId;
     SliceVariant rays = variant; // the rays always write the ids; the copy is what costs
     rays.withOperatorId = false;
     m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        m_raycaster->record(cmd, set.set, targets, cam, rays, operators);
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = m_rayTarget.extent;
+        if (withMeshes) { // first the meshes, opaque, with their depth
+            gpu::transition(cmd, m_meshColor, VK_IMAGE_LAYOUT_UNDEFINED,
+                            VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
+                            VK_ACCESS_2_NONE, VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT);
+            gpu::transition(cmd, m_rayDepth, VK_IMAGE_LAYOUT_UNDEFINED,
+                            VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                            VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                            VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
+            m_meshes->recordPass(cmd, frameSet, m_meshColor, m_rayDepth);
+            gpu::transition(cmd, m_rayDepth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
+                            VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL,
+                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT);
+            gpu::transition(cmd, m_meshColor, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                            VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                            VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                            VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                            VK_ACCESS_2_TRANSFER_READ_BIT);
+            vkCmdCopyImageToBuffer(cmd, m_meshColor.image.get(),
+                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                   m_meshReadback.buffer.get(), 1, &region);
+        }
+        m_raycaster->record(cmd, set.set, targets, cam, rays, operators);
         vkCmdCopyImageToBuffer(cmd, m_rayTarget.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                m_rayReadback.buffer.get(), 1, &region);
         if (withId)
@@ -649,7 +694,18 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
         for (std::size_t p = 0; p < image.operatorIds.size(); ++p)
             image.operatorIds[p] = operatorIdOf(codes[p], codes[p] > 0.5f);
     }
+    if (withMeshes) compositeMeshes(image);
     return image;
+}
+
+void SliceRenderer::compositeMeshes(Image& image) const {
+    // The meshes are opaque and lie behind the volume in front of them.
+    const Image meshes = readImage(m_ctx, m_meshReadback, image.width, image.height);
+    for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+        const float t = 1.0f - image.rgba[i + 3];
+        for (int c = 0; c < 4; ++c)
+            image.rgba[i + c] += t * meshes.rgba[i + c];
+    }
 }
 
 void SliceRenderer::compositeUnder(Image& image, glm::vec4 background) {

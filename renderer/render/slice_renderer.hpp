@@ -78,10 +78,13 @@ private:
     Regions& regionsFor(std::size_t index, const GpuOperator& op, double reachMm);
     /// render.method "raycast": the frame by ray casting, over nothing.
     /// `marginVoxels`: for the frame's longest slab (slabMargin).
-    /// `reachMm`: the frame's longest slab, for the operators' blocks.
+    /// `reachMm`: the frame's longest slab, for the operators' blocks;
+    /// `frameSet`: the slicing pass's set 0, for the meshes drawn first.
     Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                         const gpu::Image& transfer, const SliceVariant& variant, int marginVoxels,
-                        double reachMm);
+                        double reachMm, VkDescriptorSet frameSet);
+    /// The volume's image over the meshes' (read back after their pass).
+    void compositeMeshes(Image& image) const;
     static void compositeUnder(Image& image, glm::vec4 background);
     /// The pipeline of `variant`, made on first use (a few per scene).
     VkPipeline pipelineFor(const SliceVariant& variant);
@@ -100,6 +103,10 @@ private:
     gpu::Image m_rayTarget; ///< RGBA32F storage image, only while scenes ray-cast
     gpu::Buffer m_rayReadback;
     gpu::Image m_rayId; ///< R32F storage image: each pixel's operator-id code
+    gpu::Image
+        m_rayDepth; ///< the meshes' depth for the rays, only while ray-cast scenes have meshes
+    gpu::ImageViewHandle m_rayDepthView; ///< its depth aspect, sampled
+    gpu::Image m_noMeshDepth;            ///< 1x1 R32F of 1: the rays' depth without meshes
     gpu::Buffer m_rayIdReadback;
     std::optional<SpanGrid> m_cellSpans;    ///< the ray caster's cells; the bricks' are their 2x2x2
                                             ///< unions (null: no host scan)

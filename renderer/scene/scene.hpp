@@ -120,8 +120,7 @@ enum class Composition { Separate, Sequential };
 /// /render/method: how the volume integral is taken (docs/performance.md).
 ///   "slicing": view-aligned slices with the stencil pass (paper section 5; default)
 ///   "raycast": a compute pass marching each pixel's ray through the same
-///              sample points; up to CW_RAY_MAX_OPERATORS (3) live operators,
-///              no meshes
+///              sample points; up to CW_RAY_MAX_OPERATORS (3) live operators
 enum class RenderMethod { Slicing, Raycast };
 
 /// /render

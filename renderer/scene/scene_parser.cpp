@@ -180,19 +180,15 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
                               "\"separate\" when there are several operators");
     }
     // The ray caster takes a few live operators (under sequential composition
-    // only the last is), and no meshes.
+    // only the last is).
     if (scene.render.method == RenderMethod::Raycast) {
         const bool sequential = scene.render.composition == Composition::Sequential;
         const std::size_t live =
             sequential ? std::min<std::size_t>(scene.operators.size(), 1) : scene.operators.size();
-        const std::string what =
-            live > CW_RAY_MAX_OPERATORS
-                ? "at most " + std::to_string(CW_RAY_MAX_OPERATORS) + " operators"
-            : !scene.meshes.empty() ? std::string("no meshes")
-                                    : std::string();
-        if (!what.empty())
-            diagnostics.error("/render/method",
-                              "\"raycast\" renders scenes with " + what + "; use \"slicing\"");
+        if (live > CW_RAY_MAX_OPERATORS)
+            diagnostics.error("/render/method", "\"raycast\" renders scenes with at most " +
+                                                    std::to_string(CW_RAY_MAX_OPERATORS) +
+                                                    " operators; use \"slicing\"");
     }
     // Relative output patterns (the default too) resolve against the scene's folder.
     const std::filesystem::path pattern(scene.output.pattern);

@@ -32,6 +32,10 @@ layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
 // Which proxy the pixel's first visible sample came from (codes: see
 // CW_ID_BACKGROUND in sample_common.h), as slicing's operator-id attachment.
 layout(set = 0, binding = 12, r32f) uniform writeonly image2D idTarget;
+// The depth of the scene's opaque meshes (render/mesh_pass.hpp), drawn before
+// the rays; 1 (the far plane) where there are none. A sample counts when it
+// lies in front of them or at their depth, as slicing's depth test decides.
+layout(set = 0, binding = 14) uniform sampler2D meshDepth;
 
 // Composites slab colour `c` from proxy `code` behind `sum`; the first
 // visible one names the pixel's proxy.
@@ -272,11 +276,13 @@ void runFrom(float k, vec2 box, int i, inout int slot, inout float end) {
     }
 }
 
-// The samples in the operator's deformed box, as samplesBetween.
-vec2 operatorSamples(OperatorUniforms op, March m) {
+// The samples in the operator's deformed box up to ray parameter tEnd, as
+// samplesBetween.
+vec2 operatorSamples(OperatorUniforms op, March m, float tEnd) {
     vec3 origin = (op.worldToLocal * vec4(m.origin, 1.0)).xyz;
     vec3 dir = mat3(op.worldToLocal) * m.dir; // the same t: the map is affine
     vec2 t = rayThroughBox(origin, dir, op.mapLo.xyz, op.mapHi.xyz);
+    t.y = min(t.y, tEnd);
     return t.x < t.y ? samplesBetween(m, t.x, t.y) : vec2(1.0, 0.0);
 }
 #endif
@@ -299,12 +305,17 @@ void main() {
 
     // The untouched volume's samples: those in the occupied cells' bounds.
     vec2 t = rayThroughBox(m.origin, m.dir, ray.boxLo.xyz, ray.boxHi.xyz);
+    // The meshes' depth ends the ray.
+    float depth = textureLod(meshDepth, (vec2(pixel) + 0.5) / vec2(size), 0.0).r;
+    vec4 meshH = ray.clipToWorld * vec4(ndc, depth, 1.0);
+    float tMesh = depth < 1.0 ? dot(meshH.xyz / meshH.w - m.origin, m.dir) : 1e30;
+    t.y = min(t.y, tMesh);
     vec2 volume = t.x < t.y ? samplesBetween(m, t.x, t.y) : vec2(1.0, 0.0);
     vec2 samples = volume;
 #ifdef CW_RAY_OPERATORS
-    vec2 box0 = operatorSamples(slots.ops[0], m);
-    vec2 box1 = cwOperatorCount > 1 ? operatorSamples(slots.ops[1], m) : vec2(1.0, 0.0);
-    vec2 box2 = cwOperatorCount > 2 ? operatorSamples(slots.ops[2], m) : vec2(1.0, 0.0);
+    vec2 box0 = operatorSamples(slots.ops[0], m, tMesh);
+    vec2 box1 = cwOperatorCount > 1 ? operatorSamples(slots.ops[1], m, tMesh) : vec2(1.0, 0.0);
+    vec2 box2 = cwOperatorCount > 2 ? operatorSamples(slots.ops[2], m, tMesh) : vec2(1.0, 0.0);
     samples = unite(unite(unite(samples, box0), box1), box2);
 #endif
     vec4 sum = vec4(0.0);

@@ -7,7 +7,7 @@
 
 // The most operators a ray-cast frame takes (glsl/ray_march.h): the frame's
 // descriptor set and one per operator stay within the four sets every Vulkan
-// device can bind at once, and its 8 + 2 per operator combined image samplers
+// device can bind at once, and its 9 + 2 per operator combined image samplers
 // within the 16 every device's compute stage takes.
 #define CW_RAY_MAX_OPERATORS 3
 

@@ -213,4 +213,42 @@ TEST_F(MeshRenderTest, AGlyphOutlinesTheOperatorBox) {
     EXPECT_EQ(glyph.pixel(4, 4)[3], 0.0f);         // outside
 }
 
+TEST_F(MeshRenderTest, TheRayCasterStopsAtTheMeshesAsTheSlicesDo) {
+    // In front of the volume, inside it (faint tissue, so depth matters all
+    // the way through) and behind it, with an operator: the rays end at the
+    // meshes' depth where the slices fail the depth test, and the image goes
+    // over the meshes' alike. The same but for rounding at the cube's edges.
+    Scene faint = m_scene;
+    for (TransferPoint& p : faint.transfer.points)
+        p.alpha *= 0.1f;
+    OperatorSpec op;
+    op.type = OperatorType::Dilator;
+    op.params.kind.x = CW_OP_DILATOR;
+    op.params.a = glm::vec4(0.3f, 1.5f, 0.0f, 0.0f);
+    op.localToWorld =
+        glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(-12.0, 0.0, 8.0)), glm::dvec3(10.0));
+    for (const double y : {-40.0, 0.0, 40.0}) {
+        SCOPED_TRACE(y);
+        Scene s = faint;
+        s.meshes.push_back(cube(m_file, {4.0, y, 0.0}, 8.0));
+        s.operators = {op};
+        const Image sliced = renderScene(ctx(), s);
+        s.render.method = RenderMethod::Raycast;
+        const Image cast = renderScene(ctx(), s);
+        int differing = 0;
+        for (std::size_t i = 0; i < cast.rgba.size(); i += 4) {
+            float e = 0.0f;
+            for (std::size_t c = 0; c < 4; ++c)
+                e = std::max(e, std::abs(cast.rgba[i + c] - sliced.rgba[i + c]));
+            differing += e > 2e-3f;
+        }
+        // Measured: none; without the depth ending the rays, 256 where the
+        // cube hides the volume.
+        EXPECT_LE(differing, 8) << "of 48 x 48";
+        EXPECT_LT(compareImages(sliced, cast).meanAbs, 1e-3);
+        // The cube is there to hide something: it covers the middle.
+        EXPECT_FLOAT_EQ(renderScene(ctx(), withoutVolume(s)).pixel(26, 24)[3], 1.0f);
+    }
+}
+
 } // namespace cutaway::test

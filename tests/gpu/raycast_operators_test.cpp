@@ -203,9 +203,6 @@ TEST_F(RaycastOperators, RefusesWhatOnlySlicingDraws) {
         << tooMany;
     four["render"]["operator_composition"] = "sequential";
     EXPECT_EQ(refusal(four), "") << "under sequential composition only the last is live";
-    json meshes = phantomScene();
-    meshes["meshes"] = json::parse(R"([{"file": "tool.glb"}])");
-    EXPECT_NE(refusal(meshes).find("no meshes"), std::string::npos) << refusal(meshes);
 }
 
 TEST_F(RaycastOperators, NameTheProxyOfEachPixelAsSlicingDoes) {
