@@ -85,6 +85,10 @@ private:
                         double reachMm, VkDescriptorSet frameSet);
     /// The volume's image over the meshes' (read back after their pass).
     void compositeMeshes(Image& image) const;
+    /// The operator_id channel's value for a pixel whose first visible
+    /// sample came from the proxy with `code` (CW_ID_BACKGROUND in
+    /// shaders/glsl/sample_common.h): -2 nothing, -1 the volume, i operator i.
+    static float operatorIdOf(float code, bool covered);
     static void compositeUnder(Image& image, glm::vec4 background);
     /// The pipeline of `variant`, made on first use (a few per scene).
     VkPipeline pipelineFor(const SliceVariant& variant);
