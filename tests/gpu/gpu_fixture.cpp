@@ -9,6 +9,19 @@
 
 namespace cutaway::test {
 
+nlohmann::json operatorPhantomDocument() {
+    return nlohmann::json::parse(R"({"version": 1,
+        "volume": {"phantom": "head", "size": [64, 64, 64]},
+        "labels": {"phantom": true},
+        "transfer": {"points": [{"value": 0, "color": [0, 0, 0], "alpha": 0},
+            {"value": 50, "color": [0.9, 0.7, 0.6], "alpha": 0},
+            {"value": 80, "color": [0.9, 0.7, 0.6], "alpha": 0.05},
+            {"value": 115, "color": [0.9, 0.5, 0.5], "alpha": 0.2},
+            {"value": 200, "color": [1, 1, 0.9], "alpha": 0.9}]},
+        "camera": {"orbit": {"azimuth": 35, "elevation": 40}},
+        "render": {"size": [96, 96], "background": "transparent"}})");
+}
+
 Scene headScene(int phantomSize, int width, int height) {
     Scene s;
     s.volume.phantom = "head";

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace cutaway::test {
@@ -34,6 +35,11 @@ protected:
 /// A scene on the head phantom with a transfer function that shows skin,
 /// skull and brain, a front orbit view and only a headlight (symmetric).
 Scene headScene(int phantomSize, int width, int height);
+
+/// A scene document on the 64^3 head phantom with its labels, a transfer
+/// function that shows skin, brain and skull translucently, a view from above
+/// and in front, 96x96 over a transparent background: the operator tests'.
+nlohmann::json operatorPhantomDocument();
 
 /// Renders a scene to an image (loads its volume, prepares, renders).
 Image renderScene(const gpu::Context& ctx, const Scene& scene);

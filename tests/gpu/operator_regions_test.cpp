@@ -34,16 +34,7 @@ const char* const kOperators[] = {
 };
 
 Scene sceneWith(const std::string& op, const std::string& alignment, double spacing = 1.0) {
-    nlohmann::json doc = nlohmann::json::parse(R"({"version": 1,
-        "volume": {"phantom": "head", "size": [64, 64, 64]},
-        "labels": {"phantom": true},
-        "transfer": {"points": [{"value": 0, "color": [0, 0, 0], "alpha": 0},
-            {"value": 50, "color": [0.9, 0.7, 0.6], "alpha": 0},
-            {"value": 80, "color": [0.9, 0.7, 0.6], "alpha": 0.05},
-            {"value": 115, "color": [0.9, 0.5, 0.5], "alpha": 0.2},
-            {"value": 200, "color": [1, 1, 0.9], "alpha": 0.9}]},
-        "camera": {"orbit": {"azimuth": 35, "elevation": 40}},
-        "render": {"size": [96, 96], "background": "transparent"}})");
+    nlohmann::json doc = operatorPhantomDocument();
     nlohmann::json o = nlohmann::json::parse(op);
     if (!alignment.empty()) o["alignment"] = nlohmann::json::parse(alignment);
     doc["operators"] = nlohmann::json::array({o});

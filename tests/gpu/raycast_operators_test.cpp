@@ -24,17 +24,12 @@ namespace {
 
 using nlohmann::json;
 
+// The operator tests' phantom, closer up (the head fills the frame).
 json phantomScene() {
-    return json::parse(R"({"version": 1,
-        "volume": {"phantom": "head", "size": [64, 64, 64]},
-        "labels": {"phantom": true},
-        "transfer": {"points": [{"value": 0, "color": [0, 0, 0], "alpha": 0},
-            {"value": 50, "color": [0.9, 0.7, 0.6], "alpha": 0},
-            {"value": 80, "color": [0.9, 0.7, 0.6], "alpha": 0.05},
-            {"value": 115, "color": [0.9, 0.5, 0.5], "alpha": 0.2},
-            {"value": 200, "color": [1, 1, 0.9], "alpha": 0.9}]},
-        "camera": {"orbit": {"azimuth": 35, "elevation": 40, "distance": 110}},
-        "render": {"size": [128, 128], "background": "transparent"}})");
+    json scene = operatorPhantomDocument();
+    scene["camera"]["orbit"]["distance"] = 110;
+    scene["render"]["size"] = {128, 128};
+    return scene;
 }
 
 // Each kind, placed where the close-up view of phantomScene() sees what it
