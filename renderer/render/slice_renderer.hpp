@@ -78,6 +78,9 @@ private:
     Regions& regionsFor(std::size_t index, const GpuOperator& op, double reachMm);
     /// render.method "raycast": the frame by ray casting, over nothing.
     /// `marginVoxels`: for the frame's longest slab (slabMargin).
+    /// The chessboard distances of operator `index`'s blocks for the rays
+    /// (one active block when operator skipping is off), made on first use.
+    VkImageView blocksFor(std::size_t index, const GpuOperator& op, double reachMm);
     /// `reachMm`: the frame's longest slab, for the operators' blocks;
     /// `frameSet`: the slicing pass's set 0, for the meshes drawn first.
     Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,

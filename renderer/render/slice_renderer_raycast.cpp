@@ -9,6 +9,23 @@
 
 namespace cutaway::render {
 
+VkImageView SliceRenderer::blocksFor(std::size_t index, const GpuOperator& op, double reachMm) {
+    const auto distances = [&](glm::ivec3 dims, const std::vector<uint8_t>& active) {
+        const std::vector<uint8_t> d = chessboardDistance(dims, active);
+        const glm::uvec3 n(dims);
+        return gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, d.data(),
+                                        d.size(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    };
+    if (!m_operatorSkipping) { // one active block over the whole box
+        if (!m_noSkipping.image) m_noSkipping = distances(glm::ivec3(1), {1});
+        return m_noSkipping.view.get();
+    }
+    Regions& regions = regionsFor(index, op, reachMm);
+    if (!regions.distance.image)
+        regions.distance = distances(regions.blocks.dims, regions.blocks.active);
+    return regions.distance.view.get();
+}
+
 Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                                    const gpu::Image& transfer, const SliceVariant& variant,
                                    int marginVoxels, double reachMm, VkDescriptorSet frameSet) {
@@ -52,28 +69,7 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
     const auto& ops = m_operators->operators();
     for (std::size_t i = 0; i < ops.size(); ++i) {
         const GpuOperator& op = *ops[i];
-        Regions& regions = regionsFor(i, op, reachMm);
-        if (!m_operatorSkipping) { // one active block over the whole box
-            if (!m_noSkipping.image) {
-                const uint8_t active = 0;
-                m_noSkipping =
-                    gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {1, 1, 1}, &active, 1,
-                                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-            }
-            operators.push_back({op.set.set, m_noSkipping.view.get(),
-                                 static_cast<const shader::OperatorUniforms*>(op.uniforms.mapped),
-                                 alignmentCode(op.spec.alignment.mode)});
-            continue;
-        }
-        if (!regions.distance.image) {
-            const glm::uvec3 n(regions.blocks.dims);
-            const std::vector<uint8_t> distance =
-                chessboardDistance(regions.blocks.dims, regions.blocks.active);
-            regions.distance =
-                gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, distance.data(),
-                                         distance.size(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-        }
-        operators.push_back({op.set.set, regions.distance.view.get(),
+        operators.push_back({op.set.set, blocksFor(i, op, reachMm),
                              static_cast<const shader::OperatorUniforms*>(op.uniforms.mapped),
                              alignmentCode(op.spec.alignment.mode)});
     }
