@@ -3,7 +3,9 @@
 #include "raycast_comp.spv.h"
 #include "raycast_operators_comp.spv.h"
 #include "render/ray_cells.hpp"
+#include "shared/tile_order.h"
 
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 
@@ -15,6 +17,7 @@ struct RayPush { // matches the push constants of shaders/glsl/ray_march.h
     glm::vec4 boxLo;
     glm::vec4 boxHi;
     glm::vec4 cellsPerTexture; // w: the longest slab the cells cover, in voxels
+    std::uint32_t rowStride;   // shared/tile_order.h
 };
 
 } // namespace
@@ -155,9 +158,12 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
                         VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+    const VkExtent3D size = targets.color.extent;
+    const glm::uvec2 groups((size.width + 7) / 8, (size.height + 7) / 8); // 8x8 invocations each
     const RayPush push{glm::mat4(glm::inverse(camera.viewProj)),
                        glm::vec4(glm::vec3(m_cells.bounds.lo), 0.0f),
-                       glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f), m_cells.perTexture};
+                       glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f), m_cells.perTexture,
+                       shader::tileRowStride(groups.y)};
     std::vector<int> alignments;
     // Set 0, then each operator's; unused slots repeat the first operator's
     // (the shader's constants leave them unread, but bound they must be).
@@ -175,8 +181,7 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,
                             static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    const VkExtent3D size = targets.color.extent;
-    vkCmdDispatch(cmd, (size.width + 7) / 8, (size.height + 7) / 8, 1);
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
     for (const gpu::Image* target : {&targets.color, &targets.id})
         gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,

@@ -26,6 +26,7 @@
 #else
 #include "glsl/sample_common.h"
 #endif
+#include "shared/tile_order.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
@@ -60,6 +61,7 @@ layout(push_constant) uniform Ray {
     vec4 boxHi;
     vec4 cellsPerTexture; // xyz: cells across the texture, the last one partial;
                           // w: the longest slab they cover (voxels along each axis)
+    uint rowStride;       // the order of the tiles' rows: shared/tile_order.h
 }
 ray;
 
@@ -288,7 +290,11 @@ vec2 operatorSamples(OperatorUniforms op, March m, float tEnd) {
 #endif
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    // Workgroups take rows of tiles in an order that spreads each core's
+    // share over the image (shared/tile_order.h).
+    uint tileRow = tileRowOf(gl_WorkGroupID.y, gl_NumWorkGroups.y, ray.rowStride);
+    ivec2 pixel =
+        ivec2(gl_GlobalInvocationID.x, tileRow * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
     ivec2 size = imageSize(target);
     if (pixel.x >= size.x || pixel.y >= size.y) return;
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(size) * 2.0 - 1.0;

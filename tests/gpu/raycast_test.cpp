@@ -64,6 +64,9 @@ TEST_F(Raycast, MatchesSlicingPreintegratedAndPost) {
     expectSameAsSlicing(scene, "post-classified");
     scene["render"]["slice_spacing"] = 0.5;
     expectSameAsSlicing(scene, "post-classified, d = 0.5");
+    // 13 rows of 8x8 tiles, the last partial, taken in shared/tile_order.h's order.
+    scene["render"]["size"] = {72, 101};
+    expectSameAsSlicing(scene, "72x101");
 }
 
 TEST_F(Raycast, TransparentRunsAskOnlyWhetherASlabCanShow) {
