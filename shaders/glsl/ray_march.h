@@ -291,10 +291,11 @@ vec2 operatorSamples(OperatorUniforms op, March m, float tEnd) {
 
 void main() {
     // Workgroups take rows of tiles in an order that spreads each core's
-    // share over the image (shared/tile_order.h).
+    // share over the image, and each 8 invocations a 4x2 block of pixels
+    // (shared/tile_order.h).
     uint tileRow = tileRowOf(gl_WorkGroupID.y, gl_NumWorkGroups.y, ray.rowStride);
-    ivec2 pixel =
-        ivec2(gl_GlobalInvocationID.x, tileRow * gl_WorkGroupSize.y + gl_LocalInvocationID.y);
+    uvec2 tile = uvec2(gl_WorkGroupID.x, tileRow) * gl_WorkGroupSize.xy;
+    ivec2 pixel = ivec2(tile + pixelInTile(gl_LocalInvocationID.xy));
     ivec2 size = imageSize(target);
     if (pixel.x >= size.x || pixel.y >= size.y) return;
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(size) * 2.0 - 1.0;

@@ -14,6 +14,7 @@ namespace cutaway::shader {
 using glm::ivec3;
 using glm::mat3;
 using glm::mat4;
+using glm::uvec2;
 using glm::vec2;
 using glm::vec3;
 using glm::vec4;

@@ -1,5 +1,6 @@
-// The ray caster's order of tile rows (shared/tile_order.h): a permutation, so
-// every pixel is rendered once, and one under which each thread's contiguous
+// The ray caster's order of tile rows and of pixels in a tile
+// (shared/tile_order.h): permutations, so every pixel is rendered once; lanes
+// in lock-step get compact blocks; and under the rows' order each thread's contiguous
 // share of the workgroups (lavapipe splits a dispatch so) covers every part of
 // the image alike. In image order the first of two threads would take the top
 // half: its share of the image's top quarter would be 1/2 instead of 1/4.
@@ -44,6 +45,24 @@ double worstQuarterShare(std::uint32_t rows, std::uint32_t threads) {
             worst = std::max(worst, std::abs(double(n) / share - 0.25));
     }
     return worst;
+}
+
+TEST(TileOrder, EachRowOfInvocationsTakesA4x2BlockOfTheTile) {
+    int seen[8][8] = {};
+    for (std::uint32_t y = 0; y < 8; ++y) {
+        glm::uvec2 lo(8), hi(0);
+        for (std::uint32_t x = 0; x < 8; ++x) {
+            const glm::uvec2 p = shader::pixelInTile(glm::uvec2(x, y));
+            ASSERT_TRUE(p.x < 8 && p.y < 8) << x << " " << y;
+            ++seen[p.y][p.x];
+            lo = glm::min(lo, p);
+            hi = glm::max(hi, p);
+        }
+        EXPECT_EQ(hi - lo, glm::uvec2(3, 1)) << "invocation row " << y;
+    }
+    for (const auto& row : seen)
+        for (int n : row)
+            EXPECT_EQ(n, 1) << "every pixel of the tile exactly once";
 }
 
 TEST(TileOrder, SpreadsEachThreadsShareOverTheImage) {
