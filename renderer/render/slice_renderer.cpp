@@ -104,10 +104,19 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
 }
 
 void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOperatorId,
-                                  bool withMeshes) {
-    const bool sized =
-        m_color.image && m_color.extent.width == width && m_color.extent.height == height;
-    if (!sized) {
+                                  bool withMeshes, bool slicing) {
+    if (m_targetSize != glm::uvec2(width, height)) {
+        m_color = {};
+        m_depthStencil = {};
+        m_readback = {};
+        m_operatorId = {};
+        m_operatorIdReadback = {};
+        m_meshColor = {};
+        m_meshReadback = {};
+        m_targetSize = {width, height};
+    }
+    const VkDeviceSize texel = m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
+    if (slicing && !m_color.image) {
         m_color =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -116,22 +125,17 @@ void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOper
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().depthStencil,
                              {width, height, 1}, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                              VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
-        const VkDeviceSize texel = m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
         m_readback = gpu::createBuffer(m_ctx, texel * width * height,
                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-        m_operatorId = {};
-        m_operatorIdReadback = {};
-        m_meshColor = {};
-        m_meshReadback = {};
     }
     if (withMeshes && !m_meshColor.image) {
         m_meshColor =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        m_meshReadback =
-            gpu::createBuffer(m_ctx, m_readback.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        m_meshReadback = gpu::createBuffer(m_ctx, texel * width * height,
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     }
-    if (withOperatorId && !m_operatorId.image) {
+    if (slicing && withOperatorId && !m_operatorId.image) {
         m_operatorId =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, kOperatorIdFormat, {width, height, 1},
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -354,7 +358,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
     const bool withId = scene.output.operatorId;
     const bool withMeshes = !m_meshes->empty();
-    ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height), withId, withMeshes);
+    ensureTargets(static_cast<uint32_t>(width), static_cast<uint32_t>(height), withId, withMeshes,
+                  !raycast);
     // Everything the classification table depends on; a turntable keeps it.
     std::vector<double> transferKey{
         double(scene.render.classification == Classification::Preintegrated), volume.window.lo,

@@ -56,7 +56,10 @@ public:
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
 
 private:
-    void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId, bool withMeshes);
+    /// The frame's targets: the meshes' where it has meshes, slicing's own
+    /// (colour, depth-stencil, operator ids) only for a sliced frame.
+    void ensureTargets(uint32_t width, uint32_t height, bool withOperatorId, bool withMeshes,
+                       bool slicing);
     void ensureVertexCapacity(std::size_t bytes);
     /// Draws slices [begin, end) inside a rendering pass.
     void recordSlices(VkCommandBuffer cmd, const SliceSet& slices, VkDescriptorSet frameSet,
@@ -138,6 +141,7 @@ private:
     static constexpr std::size_t kSlicesPerChunk = 16;
     gpu::Buffer m_uniforms;
     gpu::Buffer m_vertices;
+    glm::uvec2 m_targetSize{0, 0}; ///< of every target below and the ray caster's
     gpu::Image m_color;
     gpu::Image m_depthStencil;
     gpu::Buffer m_readback;

@@ -29,7 +29,7 @@ VkImageView SliceRenderer::blocksFor(std::size_t index, const GpuOperator& op, d
 Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                                    const gpu::Image& transfer, const SliceVariant& variant,
                                    int marginVoxels, double reachMm, VkDescriptorSet frameSet) {
-    const uint32_t width = m_color.extent.width, height = m_color.extent.height;
+    const uint32_t width = m_targetSize.x, height = m_targetSize.y;
     const bool withMeshes = !m_meshes->empty();
     // The meshes' depth ends the rays: a depth-stencil target the rays can
     // sample (the slicing one need not be), or a 1 everywhere without meshes.

@@ -201,6 +201,23 @@ TEST_F(RaycastCells, FollowTheTransferFunctionFromFrameToFrame) {
     }
 }
 
+TEST_F(Raycast, FramesHoldNoSlicingTargets) {
+    // A ray-cast frame writes its own storage image: slicing's colour target
+    // and its read-back buffer (and depth-stencil) come with the first sliced
+    // frame, not before. 24 MiB of a ray-cast frog_labels render.
+    json scene = headScene();
+    scene["render"]["size"] = {256, 256};
+    job::FrameRenderer renderer(ctx());
+    scene["render"]["method"] = "raycast";
+    renderer.render(parseScene(scene, "/nonexistent", "test"));
+    const VkDeviceSize cast = ctx().memoryInUse();
+    scene["render"]["method"] = "slicing";
+    renderer.render(parseScene(scene, "/nonexistent", "test"));
+    const VkDeviceSize sliced = ctx().memoryInUse();
+    const VkDeviceSize colour = 256 * 256 * 8; // RGBA16F at least
+    EXPECT_GE(sliced, cast + 2 * colour) << "ray cast " << cast << ", then sliced " << sliced;
+}
+
 TEST_F(Raycast, TheToleranceSeesADifferentStep) {
     // The comparisons above can fail: samples 1.5 planes apart instead of 1
     // differ from slicing by far more than the tolerance.
