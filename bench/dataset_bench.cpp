@@ -116,6 +116,16 @@ std::vector<DatasetEntry> readTable(const std::filesystem::path& file) {
     return entries;
 }
 
+nlohmann::json renderPeak(const gpu::Context& ctx, const DatasetEntry& entry,
+                          const std::string& alignment, const std::string& method, double spacing,
+                          const BenchOptions& o) {
+    std::vector<SceneSetting> settings = rowSettings(entry, alignment, spacing, o);
+    settings.push_back({"/render/method", method});
+    const Scene scene = loadScene(entry.scene, settings);
+    const Image image = job::FrameRenderer(ctx).render(scene);
+    return {{"peak_rss_mib", peakRssMiB()}, {"width", image.width}};
+}
+
 nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
                             const BenchOptions& o) {
     Scene base;

@@ -41,6 +41,13 @@ std::vector<SceneSetting> rowSettings(const DatasetEntry& entry, const std::stri
 /// Reads bench/table1.json; scene paths are resolved against its folder.
 std::vector<DatasetEntry> readTable(const std::filesystem::path& file);
 
+/// Renders one frame of a row, as `cutaway render` would, in a process that
+/// does nothing else (the caller's child): {"peak_rss_mib": the process's
+/// peak resident memory after it}.
+nlohmann::json renderPeak(const gpu::Context& ctx, const DatasetEntry& entry,
+                          const std::string& alignment, const std::string& method, double spacing,
+                          const BenchOptions& options);
+
 /// Runs one dataset. Returns {"records": [...]} with one record per alignment
 /// and spacing, each carrying the dataset's bake times and peak memory; or
 /// {"skipped": "why"} when the scene's files are absent.

@@ -40,9 +40,9 @@ def frame_rows(records):
 
 def bake_rows(records):
     out = ["| dataset | read | upload | gradients | distance field | segment mask |"
-           " operator map | value spans | new transfer | peak RSS MiB | of it Vulkan MiB |"
-           " goal MiB (4 x scan + 300) |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           " operator map | value spans | new transfer | peak RSS MiB, one render (largest row) |"
+           " peak RSS MiB, whole run | of it Vulkan MiB | goal MiB (4 x scan + 300) |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     seen = set()
     for r in records:
         if r.get("renderer") != "cutaway" or "bake_ms" not in r or r["dataset"] in seen:
@@ -53,6 +53,7 @@ def bake_rows(records):
                    f" {ms(b.get('gradients_ms'))} | {ms(b.get('distance_field_ms'))} |"
                    f" {ms(b.get('segment_mask_ms'))} | {ms(b.get('operator_map_ms'))} |"
                    f" {ms(b.get('value_spans_ms'))} | {ms(b.get('classify_ms'))} |"
+                   f" {ms(r.get('render_peak_rss_mib_largest'))} |"
                    f" {ms(r['peak_rss_mib'])} | {ms(r.get('device_peak_mib'))} |"
                    f" {r['memory_goal_mib']:.0f} |")
     return out

@@ -11,8 +11,10 @@
 #include "turntable_bench.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -32,6 +34,7 @@ json inChild(const std::function<json(const gpu::Context&)>& body) {
     std::fflush(nullptr);
     const pid_t pid = fork();
     if (pid == 0) {
+        bench::resetPeakRss(); // from what the child inherited
         json out;
         try {
             gpu::Context ctx(gpu::ContextOptions{});
@@ -84,16 +87,16 @@ void printFrames(const json& records) {
 void printBakes(const json& records) {
     std::printf(
         "\n| dataset | read ms | upload ms | gradients ms | distance field ms | segment "
-        "mask ms | operator map ms | value spans ms | new transfer ms | peak RSS MiB | of it "
-        "Vulkan MiB | goal MiB (4 x scan + 300) "
-        "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        "mask ms | operator map ms | value spans ms | new transfer ms | peak RSS MiB, one "
+        "render (largest row) | peak RSS MiB, whole run | of it Vulkan MiB | goal MiB (4 x scan "
+        "+ 300) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::string last;
     for (const json& r : records) {
         if (r.value("kind", "") == "turntable" || !r.contains("bake_ms") || r["dataset"] == last)
             continue;
         last = r["dataset"];
         const json& b = r["bake_ms"];
-        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %.0f | %.0f |\n",
+        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %.0f | %.0f | %.0f |\n",
                     last.c_str(), msText(b["read_ms"]).c_str(), msText(b["upload_ms"]).c_str(),
                     msText(b["gradients_ms"]).c_str(),
                     msText(b.value("distance_field_ms", json())).c_str(),
@@ -101,6 +104,7 @@ void printBakes(const json& records) {
                     msText(b.value("operator_map_ms", json())).c_str(),
                     msText(b.value("value_spans_ms", json())).c_str(),
                     msText(b.value("classify_ms", json())).c_str(),
+                    r.value("render_peak_rss_mib_largest", 0.0),
                     r["peak_rss_mib"].is_number() ? r["peak_rss_mib"].get<double>() : 0.0,
                     r.value("device_peak_mib", 0.0), r["memory_goal_mib"].get<double>());
     }
@@ -185,8 +189,29 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "  failed: %s\n", result["error"].get<std::string>().c_str());
             continue;
         }
-        for (const json& r : result["records"])
+        // Peak memory of one render per row, each in a process of its own
+        // (as `cutaway render`), at the smallest spacing (the most slices);
+        // with the bakes, not in frames-only runs (vtk_bench.py's pairing).
+        std::map<std::pair<std::string, std::string>, double> renderPeaks;
+        double largest = 0.0;
+        const double spacing = *std::min_element(o.spacings.begin(), o.spacings.end());
+        for (const json& r : result["records"]) {
+            const auto row =
+                std::make_pair(r["alignment"].get<std::string>(), r["method"].get<std::string>());
+            if (o.bakeRepeats == 0 || renderPeaks.count(row)) continue;
+            const json peak = inChild([&](const gpu::Context& ctx) {
+                return bench::renderPeak(ctx, entry, row.first, row.second, spacing, o);
+            });
+            renderPeaks[row] = peak.value("peak_rss_mib", 0.0);
+            largest = std::max(largest, renderPeaks[row]);
+        }
+        for (json r : result["records"]) {
+            if (!renderPeaks.empty()) {
+                r["render_peak_rss_mib"] = renderPeaks[{r["alignment"], r["method"]}];
+                r["render_peak_rss_mib_largest"] = largest;
+            }
             records.push_back(r);
+        }
     }
     if (turntableFrames > 0) {
         const json result = inChild([&](const gpu::Context& ctx) {

@@ -91,6 +91,11 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
                                  "operator_map_ms", "value_spans_ms", "classify_ms"})
             EXPECT_TRUE(rec["bake_ms"][bake].is_number()) << bake;
         EXPECT_GT(rec["peak_rss_mib"].get<double>(), 0.0);
+        // One render of the row in a process of its own holds less than the
+        // whole run, and the largest row's is the dataset's.
+        const double one = rec["render_peak_rss_mib"].get<double>();
+        EXPECT_GT(one, 10.0) << "at least the driver";
+        EXPECT_LE(one, rec["render_peak_rss_mib_largest"].get<double>());
     }
     // none, axis, surface, segment: slicing and raycast; two spacings each.
     EXPECT_EQ(frames, 16);
@@ -116,6 +121,7 @@ TEST_F(BenchCli, WithoutBakeRepeatsOnlyTheFramesAreTimed) {
     EXPECT_EQ(records[0]["method"], "raycast");
     EXPECT_GT(records[0]["ms_median"].get<double>(), 0.0);
     EXPECT_FALSE(records[0].contains("bake_ms"));
+    EXPECT_FALSE(records[0].contains("render_peak_rss_mib")) << "no single-render processes";
 }
 
 TEST_F(BenchCli, AMissingTableIsBadInputNamingIt) {
