@@ -195,10 +195,10 @@ int main(int argc, char** argv) {
         std::map<std::pair<std::string, std::string>, double> renderPeaks;
         double largest = 0.0;
         const double spacing = *std::min_element(o.spacings.begin(), o.spacings.end());
-        for (const json& r : result["records"]) {
+        for (const json& r : o.bakeRepeats > 0 ? result["records"] : json::array()) {
             const auto row =
                 std::make_pair(r["alignment"].get<std::string>(), r["method"].get<std::string>());
-            if (o.bakeRepeats == 0 || renderPeaks.count(row)) continue;
+            if (renderPeaks.count(row)) continue;
             const json peak = inChild([&](const gpu::Context& ctx) {
                 return bench::renderPeak(ctx, entry, row.first, row.second, spacing, o);
             });
