@@ -235,7 +235,13 @@ Image FrameRenderer::render(const Scene& scene) {
         mesh.attach.reset();
     }
     live.operators = liveOperators(scene);
-    return m_renderer.render(live, *m_volume);
+    Image image = m_renderer.render(live, *m_volume);
+    // The renderer counts the live operators; operator_id names each by its
+    // index in the scene, and the live ones are the scene's last.
+    const auto first = static_cast<float>(scene.operators.size() - live.operators.size());
+    for (float& id : image.operatorIds)
+        if (id >= 0.0f) id += first;
+    return image;
 }
 
 Image renderImage(const gpu::Context& ctx, const Scene& scene) {

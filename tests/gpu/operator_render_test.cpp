@@ -231,6 +231,16 @@ TEST_F(GpuTest, SequentialCompositionRendersOverlappingOperators) {
     ASSERT_GT(footprint, 20) << "the retractor should open the head";
     EXPECT_GT(departure, 0.4 * effect) << footprint << " pixels";
     EXPECT_LT(departure, 1.6 * effect) << footprint << " pixels";
+
+    // operator_id names the live operator by its index in the scene: 1.
+    sequential.output.operatorId = true;
+    const Image ids = job::renderImage(ctx(), sequential);
+    int live = 0;
+    for (float v : ids.operatorIds) {
+        ASSERT_TRUE(v == -2.0f || v == -1.0f || v == 1.0f) << v;
+        live += v == 1.0f;
+    }
+    EXPECT_GT(live, 20) << "the dilator's box shows moved samples";
 }
 
 } // namespace cutaway::test
