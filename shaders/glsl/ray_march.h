@@ -298,7 +298,7 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
         // after it. Three calls rather than the loop below: lavapipe runs
         // every call's code on each pass of a loop, masked where no lane
         // takes it, and an operator's resolve and shading cost as much as
-        // tens of the untouched volume's samples (ct_head's peel: 15-25 %
+        // tens of the untouched volume's samples (ct_head's peel: 10-25 %
         // of the frame).
         bool hit = box0.x <= box0.y;
         float before = hit ? box0.x - 1.0 : samples.y;
