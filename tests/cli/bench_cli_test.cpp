@@ -124,6 +124,30 @@ TEST_F(BenchCli, WithoutBakeRepeatsOnlyTheFramesAreTimed) {
     EXPECT_FALSE(records[0].contains("render_peak_rss_mib")) << "no single-render processes";
 }
 
+// bench/ab_compare.py, which judges a change by alternating two builds: the
+// same build twice gives a row per alignment, each with its pairs counted.
+TEST_F(BenchCli, AbCompareGivesEachRowItsRatioOverThePairs) {
+    const auto table = writeTable();
+    const std::string script = std::string(CUTAWAY_SOURCE_DIR) + "/bench/ab_compare.py";
+    const CommandResult r =
+        runProgram("python3", script + " " + CUTAWAY_BENCH + " " + CUTAWAY_BENCH + " --table " +
+                                  table.string() +
+                                  " --datasets '' --alignments none,axis --pairs 2 --frames 1"
+                                  " --size 32");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* alignment : {"none", "axis"}) {
+        const std::string row = std::string("| tiny | ") + alignment + " | raycast | 1.0 | ";
+        const auto at = r.output.find(row);
+        ASSERT_NE(at, std::string::npos) << row << "\n" << r.output;
+        const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+        EXPECT_EQ(line.substr(line.size() - 6), " | 2 |") << line;
+    }
+    const CommandResult bad =
+        runProgram("python3", script + " " + (m_dir / "absent").string() + " " + CUTAWAY_BENCH);
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("absent: not an executable file"), std::string::npos) << bad.output;
+}
+
 TEST_F(BenchCli, AMissingTableIsBadInputNamingIt) {
     const CommandResult r =
         runProgram(CUTAWAY_BENCH, "--table " + (m_dir / "absent.json").string());
