@@ -6,7 +6,8 @@ build B back to back on the same rows (their order alternating from pair to
 pair), and the table gives, per row, the median of A's and of B's frame
 medians and the median and range of B / A over the pairs. A ratio whose range
 straddles 1 is within the noise; so can be one that does not: the same build
-against itself gave 1.05-1.25 in two pairs (docs/performance.md).
+against itself gave 0.86-1.27 over 8 pairs, medians 0.95-0.98
+(docs/performance.md, "What a fetch costs").
 
 Usage: python3 bench/ab_compare.py BENCH_A BENCH_B [--pairs N] [--table FILE]
        [--datasets LIST] [--alignments LIST] [--methods LIST] [--spacings LIST]
@@ -39,7 +40,7 @@ def run(binary, args, json_path):
     with open(json_path) as f:
         records = json.load(f)
     return {(r["dataset"], r["alignment"], r["method"], r["slice_spacing"]): r["ms_median"]
-            for r in records if "ms_median" in r and r.get("method") != "turntable"}
+            for r in records if "ms_median" in r}
 
 
 def main():
