@@ -54,68 +54,104 @@ std::uint8_t toByte(float v) {
     return static_cast<std::uint8_t>(std::lround(v * 255.0f));
 }
 
+std::uint32_t bitsOf(float v) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    return bits;
+}
+
+float floatOf(std::uint32_t bits) {
+    float v;
+    std::memcpy(&v, &bits, sizeof v);
+    return v;
+}
+
+// toByte(linearToSrgb(x)) without a pow per channel: the byte only grows with
+// x, so it is fixed by the smallest x of each byte (`first`, found once by
+// bisection over the floats of [0, 1], whose bit patterns grow with them); a
+// bucket of 1/kBuckets of the linear range starts from its lower edge's byte
+// and steps past the thresholds in it (at most two: the curve rises at most
+// 3300 bytes per unit).
+class SrgbBytes {
+public:
+    SrgbBytes() {
+        auto exact = [](float x) { return toByte(linearToSrgb(x)); };
+        m_first[0] = 0.0f;
+        for (int b = 1; b < 256; ++b) {
+            std::uint32_t below = 0, at = bitsOf(1.0f); // exact(below) < b <= exact(at)
+            while (at - below > 1) {
+                const std::uint32_t mid = below + (at - below) / 2;
+                (exact(floatOf(mid)) >= b ? at : below) = mid;
+            }
+            m_first[b] = floatOf(at);
+        }
+        for (int i = 0; i < kBuckets; ++i)
+            m_bucket[i] = exact(static_cast<float>(i) / kBuckets);
+    }
+    std::uint8_t operator()(float x) const {
+        if (!(x > 0.0f)) return 0; // also NaN
+        if (x >= 1.0f) return 255;
+        int b = m_bucket[std::min(static_cast<int>(x * kBuckets), kBuckets - 1)];
+        while (b < 255 && x >= m_first[b + 1])
+            ++b;
+        return static_cast<std::uint8_t>(b);
+    }
+
+private:
+    static constexpr int kBuckets = 4096;
+    std::array<float, 256> m_first{};
+    std::array<std::uint8_t, kBuckets> m_bucket{};
+};
+
 // Linear premultiplied RGBA -> 8-bit straight (un-premultiplied) sRGB colour
 // with linear alpha, as PNG defines it.
-void encodePixel(const float* in, std::uint8_t* out) {
+void encodePixel(const SrgbBytes& srgb, const float* in, std::uint8_t* out) {
     float a = in[3];
     if (!(a > 0.0f)) a = 0.0f; // also NaN
     a = std::min(a, 1.0f);
-    for (int c = 0; c < 3; ++c) {
-        const float straight = a > 0.0f ? in[c] / a : 0.0f;
-        out[c] = toByte(linearToSrgb(straight));
-    }
+    for (int c = 0; c < 3; ++c)
+        out[c] = srgb(a > 0.0f ? in[c] / a : 0.0f);
     out[3] = toByte(a);
 }
 
 int paeth(int a, int b, int c) {
     const int p = a + b - c;
     const int pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
-    if (pa <= pb && pa <= pc) return a;
-    return pb <= pc ? b : c;
+    return pa <= pb && pa <= pc ? a : pb <= pc ? b : c;
 }
 
-// Filters one scanline with each of PNG's five filters and keeps the one with
-// the smallest sum of absolute (signed) residuals, the heuristic the PNG spec
+int absResidual(int value, int predictor) {
+    return std::abs(static_cast<std::int8_t>(static_cast<std::uint8_t>(value - predictor)));
+}
+
+// Filters one scanline with the PNG filter (of the five) whose residuals have
+// the smallest sum of absolute (signed) values, the heuristic the PNG spec
 // recommends; it compresses smooth renders far better than filter 0 alone.
-// `prev` is the previous raw row (all zero for the first row); bpp = 4.
-// `candidates` is scratch space reused across rows.
-void filterRow(const std::uint8_t* row, const std::uint8_t* prev, std::size_t n,
-               std::array<Bytes, 5>& candidates, Bytes& out) {
-    constexpr std::size_t bpp = 4;
-    std::array<std::uint64_t, 5> cost{};
-    for (int f = 0; f < 5; ++f) {
-        Bytes& line = candidates[f];
-        line.resize(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            const int left = i >= bpp ? row[i - bpp] : 0;
-            const int up = prev[i];
-            const int upLeft = i >= bpp ? prev[i - bpp] : 0;
-            int predictor = 0;
-            switch (f) {
-            case 1:
-                predictor = left;
-                break;
-            case 2:
-                predictor = up;
-                break;
-            case 3:
-                predictor = (left + up) / 2;
-                break;
-            case 4:
-                predictor = paeth(left, up, upLeft);
-                break;
-            default:
-                break;
-            }
-            const auto residual = static_cast<std::uint8_t>(row[i] - predictor);
-            line[i] = residual;
-            cost[f] += static_cast<std::uint64_t>(std::abs(static_cast<std::int8_t>(residual)));
-        }
+// `row` and `prev` (the previous raw row, zero above the first) each start
+// with kBpp zero bytes, the "left" of the first pixel; n bytes follow. One
+// pass sums all five filters' costs, a second writes the chosen one's.
+constexpr std::size_t kBpp = 4;
+void filterRow(const std::uint8_t* row, const std::uint8_t* prev, std::size_t n, Bytes& out) {
+    std::array<std::uint32_t, 5> cost{};
+    for (std::size_t i = kBpp; i < n + kBpp; ++i) {
+        const int x = row[i], left = row[i - kBpp], up = prev[i], upLeft = prev[i - kBpp];
+        cost[0] += absResidual(x, 0);
+        cost[1] += absResidual(x, left);
+        cost[2] += absResidual(x, up);
+        cost[3] += absResidual(x, (left + up) / 2);
+        cost[4] += absResidual(x, paeth(left, up, upLeft));
     }
-    const auto best =
-        static_cast<std::size_t>(std::min_element(cost.begin(), cost.end()) - cost.begin());
+    const auto best = static_cast<int>(std::min_element(cost.begin(), cost.end()) - cost.begin());
     out.push_back(static_cast<std::uint8_t>(best));
-    out.insert(out.end(), candidates[best].begin(), candidates[best].end());
+    for (std::size_t i = kBpp; i < n + kBpp; ++i) {
+        const int left = row[i - kBpp], up = prev[i];
+        const int predictor = best == 1   ? left
+                              : best == 2 ? up
+                              : best == 3 ? (left + up) / 2
+                              : best == 4 ? paeth(left, up, prev[i - kBpp])
+                                          : 0;
+        out.push_back(static_cast<std::uint8_t>(row[i] - predictor));
+    }
 }
 
 Bytes encodePng(const fs::path& path, const Image& image) {
@@ -123,15 +159,15 @@ Bytes encodePng(const fs::path& path, const Image& image) {
     const auto height = static_cast<std::size_t>(image.height);
     const std::size_t rowBytes = width * 4;
 
+    static const SrgbBytes srgb;
     Bytes filtered;
     filtered.reserve((rowBytes + 1) * height);
-    Bytes row(rowBytes), prev(rowBytes, 0);
-    std::array<Bytes, 5> candidates;
+    Bytes row(kBpp + rowBytes, 0), prev(kBpp + rowBytes, 0);
     for (std::size_t y = 0; y < height; ++y) {
         const float* src = image.rgba.data() + y * rowBytes;
         for (std::size_t x = 0; x < width; ++x)
-            encodePixel(src + x * 4, row.data() + x * 4);
-        filterRow(row.data(), prev.data(), rowBytes, candidates, filtered);
+            encodePixel(srgb, src + x * 4, row.data() + kBpp + x * 4);
+        filterRow(row.data(), prev.data(), rowBytes, filtered);
         std::swap(row, prev);
     }
 
@@ -177,6 +213,11 @@ float linearToSrgb(float linear) {
     if (linear >= 1.0f) return 1.0f;
     if (linear <= 0.0031308f) return 12.92f * linear;
     return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+std::uint8_t linearToSrgbByte(float linear) {
+    static const SrgbBytes srgb;
+    return srgb(linear);
 }
 
 void writePng(const fs::path& path, const Image& image) {
