@@ -95,6 +95,12 @@ def turntable_lines(records):
                    f"{t['frames']} frames written as {t['writes']}: {t['total_s']:.1f} s in all, "
                    f"{t['sustained_fps']:.2f} fps with the first frame's loading and bakes, "
                    f"against {single:.2f} fps for single frames." + steady if single else "")
+        if t.get("write_costs"):
+            out += ["", f"Writing one {t['width']}x{t['height']} frame of it (half floats, "
+                    "`/output/compression`; each the median of 5 writes):", "",
+                    "| file | ms | KiB |", "|---|---|---|"]
+            out += [f"| {w['file']} | {w['ms_median']:.1f} | {w['bytes'] / 1024:.0f} |"
+                    for w in t["write_costs"]]
     return out
 
 

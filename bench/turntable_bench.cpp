@@ -1,28 +1,64 @@
 #include "turntable_bench.hpp"
 
 #include "bench_util.hpp"
+#include "io/exr.hpp"
+#include "io/png.hpp"
 #include "job/render_job.hpp"
 #include "job/sequence.hpp"
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 namespace cutaway::bench {
 
 namespace {
 
 // The single-frame rate of `scene` as the Table 1 rows take it (a warm-up
-// frame, then `frames` with the view turning), in a renderer of its own.
-double singleFrameFps(const gpu::Context& ctx, Scene scene, int frames) {
+// frame, then `frames` with the view turning), in a renderer of its own;
+// `last` receives the last frame.
+double singleFrameFps(const gpu::Context& ctx, Scene scene, int frames, Image* last = nullptr) {
     job::FrameRenderer renderer(ctx);
     const double azimuth = scene.camera.azimuthDeg;
     renderer.render(scene);
     std::vector<double> ms;
     for (int i = 1; i <= frames; ++i) {
         scene.camera.azimuthDeg = azimuth + 360.0 * i / frames;
-        ms.push_back(millisecondsOf([&] { renderer.render(scene); }));
+        ms.push_back(millisecondsOf([&] {
+            Image image = renderer.render(scene);
+            if (last) *last = std::move(image);
+        }));
     }
     return 1000.0 / statsOf(ms).median;
+}
+
+// What writing `image` costs, as a frame of a sequence is written (half
+// floats), with each of /output/compression's choices, and as the PNG
+// preview: the median of 5 writes into `dir`, and the file's size.
+nlohmann::json writeCosts(const Image& image, const std::filesystem::path& dir) {
+    const std::pair<const char*, ExrCompression> kCompressions[] = {{"none", ExrCompression::None},
+                                                                    {"rle", ExrCompression::Rle},
+                                                                    {"zips", ExrCompression::Zips},
+                                                                    {"zip", ExrCompression::Zip},
+                                                                    {"piz", ExrCompression::Piz}};
+    nlohmann::json costs = nlohmann::json::array();
+    auto time = [&](const std::string& file, const auto& write) {
+        const std::filesystem::path path = dir / file;
+        std::vector<double> ms;
+        for (int i = 0; i < 5; ++i)
+            ms.push_back(millisecondsOf([&] { write(path); }));
+        costs.push_back({{"file", file},
+                         {"ms_median", statsOf(ms).median},
+                         {"bytes", std::filesystem::file_size(path)}});
+    };
+    for (const auto& [name, compression] : kCompressions) {
+        ExrOptions options;
+        options.compression = compression;
+        time(std::string("frame_") + name + ".exr",
+             [&](const std::filesystem::path& path) { writeExr(path, image, options); });
+    }
+    time("frame.png", [&](const std::filesystem::path& path) { writePng(path, image); });
+    return costs;
 }
 
 } // namespace
@@ -60,7 +96,9 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
         // drifts over minutes, so the rows timed earlier are no yardstick.
         const double singleBefore = singleFrameFps(ctx, scene, o.frames);
         const job::SequenceSummary summary = job::renderSequence(ctx, scene, options);
-        const double singleAfter = singleFrameFps(ctx, scene, o.frames);
+        Image last;
+        const double singleAfter = singleFrameFps(ctx, scene, o.frames, &last);
+        const nlohmann::json writes = writeCosts(last, dir);
         std::filesystem::remove_all(dir);
         std::vector<double> ms;
         for (const double s : summary.frameSeconds)
@@ -88,7 +126,8 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
                 {"frame_ms_median", s.median},
                 {"single_fps_before", singleBefore},
                 {"single_fps_after", singleAfter},
-                {"writes", "EXR (half) + PNG per frame"}};
+                {"writes", "EXR (half) + PNG per frame"},
+                {"write_costs", writes}};
     }
     return {{"skipped", "no dataset with a surface row is present"}};
 }
@@ -113,6 +152,13 @@ void printTurntable(const nlohmann::json& records) {
             t["total_s"].get<double>(), t["sustained_fps"].get<double>(),
             t["first_frame_s"].get<double>(), t["steady_fps"].get<double>(), single,
             t.value("single_fps_before", 0.0), t.value("single_fps_after", 0.0));
+        if (!t.contains("write_costs")) continue;
+        std::printf("\nwriting one %dx%d frame (half floats; each the median of 5 writes):\n\n"
+                    "| file | ms | KiB |\n|---|---|---|\n",
+                    t["width"].get<int>(), t["height"].get<int>());
+        for (const nlohmann::json& w : t["write_costs"])
+            std::printf("| %s | %.1f | %.0f |\n", w["file"].get<std::string>().c_str(),
+                        w["ms_median"].get<double>(), w["bytes"].get<double>() / 1024.0);
     }
 }
 

@@ -47,9 +47,25 @@ void checkImage(const fs::path& path, const Image& image) {
     }
 }
 
+Imf::Compression toImf(ExrCompression compression) {
+    switch (compression) {
+    case ExrCompression::None:
+        return Imf::NO_COMPRESSION;
+    case ExrCompression::Rle:
+        return Imf::RLE_COMPRESSION;
+    case ExrCompression::Zips:
+        return Imf::ZIPS_COMPRESSION;
+    case ExrCompression::Zip:
+        return Imf::ZIP_COMPRESSION;
+    case ExrCompression::Piz:
+        return Imf::PIZ_COMPRESSION;
+    }
+    return Imf::ZIP_COMPRESSION;
+}
+
 Imf::Header makeHeader(const Image& image, const ExrOptions& options) {
     Imf::Header header(image.width, image.height); // data = display window, origin (0,0)
-    header.compression() = Imf::ZIP_COMPRESSION;
+    header.compression() = toImf(options.compression);
     header.lineOrder() = Imf::INCREASING_Y; // row 0 first, the top row as in Image
     const Imf::PixelType type = options.halfFloat ? Imf::HALF : Imf::FLOAT;
     for (const char* name : kChannelNames)

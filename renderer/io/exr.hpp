@@ -1,6 +1,7 @@
 #pragma once
 // OpenEXR output: RGBA, linear, premultiplied (EXR's own convention), half by
-// default or 32-bit float on request, ZIP compression, written atomically.
+// default or 32-bit float on request, ZIP compression by default (any of
+// OpenEXR's lossless ones on request), written atomically.
 // String attributes go into the header (frame number, scene, version).
 #include "io/image.hpp"
 
@@ -17,8 +18,19 @@ struct ExrChannel {
     const std::vector<float>* values = nullptr;
 };
 
+/// OpenEXR's lossless compressions (the lossy ones are left out: an
+/// illustration's pixels go on to be composited and measured).
+enum class ExrCompression {
+    None, ///< uncompressed: the fastest to write, the largest
+    Rle,  ///< run lengths: fast, small only for flat areas
+    Zips, ///< zlib, one scanline at a time
+    Zip,  ///< zlib, 16 scanlines at a time: the default
+    Piz   ///< wavelets: often the smallest for noisy images, slower
+};
+
 struct ExrOptions {
     bool halfFloat = true;
+    ExrCompression compression = ExrCompression::Zip;
     std::vector<std::pair<std::string, std::string>> attributes; ///< extra string attributes
     std::vector<ExrChannel> channels; ///< extra FLOAT channels (e.g. operator ids)
 };

@@ -75,6 +75,22 @@ struct PendingWrite {
     std::future<void> done;
 };
 
+ExrCompression exrCompression(Compression compression) {
+    switch (compression) {
+    case Compression::None:
+        return ExrCompression::None;
+    case Compression::Rle:
+        return ExrCompression::Rle;
+    case Compression::Zips:
+        return ExrCompression::Zips;
+    case Compression::Zip:
+        return ExrCompression::Zip;
+    case Compression::Piz:
+        return ExrCompression::Piz;
+    }
+    return ExrCompression::Zip;
+}
+
 PendingWrite startWrite(FrameEvent event, Clock::time_point start, Image image, ExrOptions exr) {
     auto write = [exrPath = event.exr, png = event.png, image = std::move(image),
                   exr = std::move(exr)]() mutable {
@@ -165,6 +181,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             if (halted) break; // the previous frame failed to write, or under --fail-fast
             ExrOptions exr;
             exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
+            exr.compression = exrCompression(frameScene.output.compression);
             exr.attributes = {{"cutaway/frame", std::to_string(event.frame)},
                               {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
                               {"cutaway/version", CUTAWAY_VERSION},

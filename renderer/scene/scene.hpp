@@ -137,11 +137,15 @@ struct RenderSettings {
 
 enum class PixelType { Half, Float };
 
+/// /output/compression: OpenEXR's lossless compressions.
+enum class Compression { None, Rle, Zips, Zip, Piz };
+
 /// /output
 struct OutputSettings {
     std::string pattern = "cutaway_####.exr"; ///< resolved against the scene's folder when relative
     PixelType pixelType = PixelType::Half;    ///< /output/pixel_type: "half" | "float"
-    bool png = false;                         ///< /output/png: also write an sRGB PNG preview
+    Compression compression = Compression::Zip; ///< /output/compression
+    bool png = false;                           ///< /output/png: also write an sRGB PNG preview
     bool operatorId = false; ///< /output/operator_id: an EXR channel "operator_id" (see Image)
 };
 

@@ -94,6 +94,8 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
 ///                zero-padded frame number. Relative paths are relative to the
 ///                scene file's folder.
 ///  * pixel_type  string, "half" or "float", default "half": EXR channel type
+///  * compression string, "none", "rle", "zips", "zip" or "piz", default "zip":
+///                the EXR's compression, all lossless
 ///  * png         boolean, default false: also write an 8-bit sRGB PNG preview
 ///  * operator_id boolean, default false: add a float channel "operator_id" to the EXR,
 ///                the operator (0-based) each pixel's first visible sample came from,
@@ -103,6 +105,13 @@ void parseOutput(JsonReader& reader, OutputSettings& output) {
     output.pixelType = reader.string("pixel_type", "half", {"half", "float"}) == "float"
                            ? PixelType::Float
                            : PixelType::Half;
+    const std::string compression =
+        reader.string("compression", "zip", {"none", "rle", "zips", "zip", "piz"});
+    output.compression = compression == "none"   ? Compression::None
+                         : compression == "rle"  ? Compression::Rle
+                         : compression == "zips" ? Compression::Zips
+                         : compression == "piz"  ? Compression::Piz
+                                                 : Compression::Zip;
     output.png = reader.boolean("png", output.png);
     output.operatorId = reader.boolean("operator_id", output.operatorId);
 }

@@ -75,6 +75,16 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
             EXPECT_NEAR(rec["steady_fps"].get<double>() *
                             (rec["total_s"].get<double>() - rec["first_frame_s"].get<double>()),
                         1.0, 0.05);
+            // Each compression's write, and the PNG's; uncompressed is the largest.
+            const json& writes = rec["write_costs"];
+            ASSERT_EQ(writes.size(), 6u) << writes.dump();
+            for (const json& w : writes) {
+                EXPECT_GT(w["ms_median"].get<double>(), 0.0) << w.dump();
+                EXPECT_GT(w["bytes"].get<double>(), 0.0) << w.dump();
+                if (w["file"].get<std::string>().ends_with(".exr"))
+                    EXPECT_LE(w["bytes"], writes[0]["bytes"]) << w.dump();
+            }
+            EXPECT_EQ(writes[0]["file"], "frame_none.exr");
             continue;
         }
         ++frames;

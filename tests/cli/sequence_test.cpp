@@ -3,6 +3,7 @@
 #include "cli_util.hpp"
 #include "core/error.hpp"
 #include "io/exr.hpp"
+#include "io/exr_header.hpp"
 #include "job/render_job.hpp"
 
 #include <algorithm>
@@ -214,6 +215,23 @@ TEST_F(CliTest, AFailedFrameDoesNotStopTheOthersUnlessFailFast) {
     EXPECT_EQ(fast.code, 2) << fast.output;
     EXPECT_EQ(fast.output.find("frame 5 failed"), std::string::npos) << fast.output;
     EXPECT_EQ(files(m_dir / "frames"), frameNames(3, 3));
+}
+
+// /output/compression reaches the file; the pixels do not depend on it.
+TEST_F(CliTest, TheSceneChoosesTheExrCompression) {
+    std::string text = turntable(0);
+    const std::string pattern = R"("pattern": "frames/t_####.exr")";
+    const fs::path zip = write("zip.json", text);
+    text.replace(text.find(pattern), pattern.size(),
+                 R"("pattern": "none/t_####.exr", "compression": "none")");
+    const fs::path none = write("none.json", text);
+    ASSERT_EQ(runCutaway("render " + zip.string()).code, 0);
+    ASSERT_EQ(runCutaway("render " + none.string()).code, 0);
+    const fs::path zipped = m_dir / "frames" / "t_0000.exr", plain = m_dir / "none" / "t_0000.exr";
+    EXPECT_EQ(exrCompressionCode(zipped), 3); // ZIP, the default
+    EXPECT_EQ(exrCompressionCode(plain), 0);
+    EXPECT_EQ(readExr(zipped).rgba, readExr(plain).rgba);
+    EXPECT_LT(fs::file_size(zipped), fs::file_size(plain));
 }
 
 TEST_F(CliTest, SetOverridesAValueByPointer) {

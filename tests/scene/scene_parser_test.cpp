@@ -31,7 +31,8 @@ const char* const kFullExample = R"({
                                { "direction": [0, 0, 1] } ] },
   "render": { "size": [640, 480], "slice_spacing": 0.5, "background": [0.1, 0.2, 0.3],
               "shading": { "enabled": false, "diffuse": 0.7, "specular": 0.2, "shininess": 64 } },
-  "output": { "pattern": "out/head_####.exr", "pixel_type": "float", "png": true }
+  "output": { "pattern": "out/head_####.exr", "pixel_type": "float", "compression": "piz",
+              "png": true }
 })";
 
 TEST(SceneParser, FillsDefaults) {
@@ -76,6 +77,7 @@ TEST(SceneParser, FillsDefaults) {
     EXPECT_EQ(scene.render.shading.shininess, 32.0f);
     EXPECT_EQ(scene.output.pattern, "/scenes/cutaway_####.exr");
     EXPECT_EQ(scene.output.pixelType, PixelType::Half);
+    EXPECT_EQ(scene.output.compression, Compression::Zip);
     EXPECT_FALSE(scene.output.png);
 }
 
@@ -122,6 +124,7 @@ TEST(SceneParser, ReadsEveryKeyIntoItsField) {
     EXPECT_EQ(scene.render.shading.shininess, 64.0f);
     EXPECT_EQ(scene.output.pattern, "/data/scenes/out/head_####.exr");
     EXPECT_EQ(scene.output.pixelType, PixelType::Float);
+    EXPECT_EQ(scene.output.compression, Compression::Piz);
     EXPECT_TRUE(scene.output.png);
 }
 
@@ -359,6 +362,9 @@ TEST(SceneParser, OutputIsChecked) {
     EXPECT_EQ(parseError(patched(R"({"output": {"pixel_type": "double", "png": "yes"}})")),
               "scene.json: /output/pixel_type: expected one of \"half\", \"float\", got "
               "\"double\"\nscene.json: /output/png: expected true or false, got \"yes\"");
+    EXPECT_EQ(parseError(patched(R"({"output": {"compression": "dwaa"}})")),
+              "scene.json: /output/compression: expected one of \"none\", \"rle\", \"zips\", "
+              "\"zip\", \"piz\", got \"dwaa\"");
 }
 
 TEST(SceneParser, LongValuesAreAbbreviated) {

@@ -151,6 +151,9 @@ const Boundary kBoundaries[] = {
     {R"({"output": {"pattern": "x.exr", "pixel_type": "float", "png": false}})", nullptr},
     {R"({"output": {"pattern": 5}})", "/output/pattern"},
     {R"({"output": {"pixel_type": "Half"}})", "/output/pixel_type"},
+    {R"({"output": {"compression": "none"}})", nullptr},
+    {R"({"output": {"compression": "ZIP"}})", "/output/compression"},
+    {R"({"output": {"compression": 3}})", "/output/compression"},
 };
 // clang-format on
 
