@@ -103,6 +103,11 @@ private:
     std::array<std::uint8_t, kBuckets> m_bucket{};
 };
 
+const SrgbBytes& srgbBytes() {
+    static const SrgbBytes table;
+    return table;
+}
+
 // Linear premultiplied RGBA -> 8-bit straight (un-premultiplied) sRGB colour
 // with linear alpha, as PNG defines it.
 void encodePixel(const SrgbBytes& srgb, const float* in, std::uint8_t* out) {
@@ -159,7 +164,7 @@ Bytes encodePng(const fs::path& path, const Image& image) {
     const auto height = static_cast<std::size_t>(image.height);
     const std::size_t rowBytes = width * 4;
 
-    static const SrgbBytes srgb;
+    const SrgbBytes& srgb = srgbBytes();
     Bytes filtered;
     filtered.reserve((rowBytes + 1) * height);
     Bytes row(kBpp + rowBytes, 0), prev(kBpp + rowBytes, 0);
@@ -216,8 +221,7 @@ float linearToSrgb(float linear) {
 }
 
 std::uint8_t linearToSrgbByte(float linear) {
-    static const SrgbBytes srgb;
-    return srgb(linear);
+    return srgbBytes()(linear);
 }
 
 void writePng(const fs::path& path, const Image& image) {
