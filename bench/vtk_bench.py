@@ -15,11 +15,15 @@ distance, trilinear interpolation and Phong shading with a camera headlight.
 With --cutaway-bench BIN, each dataset's VTK runs are paired with cutaway's: BIN
 times its ray caster on the same rows (no operator, the spec's spacings and frames)
 just before and just after VTK, so that the ratio does not depend on how fast the
-machine was minutes apart (the table's own rows ran long before). The VTK records
-carry those two medians as "cutaway_paired_ms".
+machine was minutes apart (the table's own rows ran long before). With --rounds R
+(default 3) the two alternate: cutaway, VTK, cutaway, ..., VTK, cutaway, and each
+VTK run is set against the mean of the cutaway runs on either side of it; a single
+pair can be a third apart on this machine. The VTK records carry the median of
+their rounds as "ms_median", cutaway's R + 1 medians as "cutaway_paired_ms", and
+each round's ratio VTK / cutaway (> 1: cutaway faster) as "paired_ratios".
 
 Usage: xvfb-run -a /usr/bin/python3 bench/vtk_bench.py SPEC_DIR RESULTS_JSON [--frames N]
-       [--cutaway-bench BIN]
+       [--cutaway-bench BIN] [--rounds R]
 """
 import argparse
 import glob
@@ -163,6 +167,29 @@ def cutaway_raycast_ms(binary, spec, frames):
                     for r in json.load(f) if r.get("renderer") == "cutaway"}
 
 
+def merge_rounds(vtk_rounds, cutaway_runs):
+    """One record per slice spacing from R rounds of VTK records (`vtk_rounds`, a list
+    of lists) and the R + 1 cutaway runs around them ({slice spacing: ms}; none
+    without --cutaway-bench): the median and extremes over the rounds, and each
+    round's ratio to the mean of the cutaway runs on either side of it."""
+    merged = []
+    for at, first in enumerate(vtk_rounds[0]):
+        runs = [records[at] for records in vtk_rounds]
+        medians = [r["ms_median"] for r in runs]
+        med = statistics.median(medians)
+        record = dict(first, ms_median=round(med, 1), fps=round(1000.0 / med, 2),
+                      ms_min=min(r["ms_min"] for r in runs),
+                      ms_max=max(r["ms_max"] for r in runs), rounds=len(runs))
+        d = round(float(first["slice_spacing"]), 6)
+        if len(cutaway_runs) == len(runs) + 1 and all(d in c for c in cutaway_runs):
+            cut = [c[d] for c in cutaway_runs]
+            record["cutaway_paired_ms"] = [round(c, 1) for c in cut]
+            record["paired_ratios"] = [round(m / ((cut[i] + cut[i + 1]) / 2), 3)
+                                       for i, m in enumerate(medians)]
+        merged.append(record)
+    return merged
+
+
 def print_table(vtk_records, others, version):
     def cutaway_ms(r):
         """The faster of cutaway's methods (slicing, raycast) on the same row."""
@@ -175,14 +202,16 @@ def print_table(vtk_records, others, version):
     print(f"VTK {METHOD} {version}, same volume, view, image size, sample distance, "
           "transfer function; ratio > 1 means cutaway is faster\n")
     print("| dataset | dims | d | VTK ms median | VTK fps | cutaway ms median (none, faster"
-          " method) | ratio | cutaway ray caster just before / after VTK | paired ratio |")
+          " method) | ratio | cutaway ray caster around the VTK runs | paired ratios (median) |")
     print("|---|---|---|---|---|---|---|---|---|")
     for r in vtk_records:
         c = cutaway_ms(r)
         ratio = f"{r['ms_median'] / c:.2f}" if c else "-"
         paired = r.get("cutaway_paired_ms")
         pair_text = " / ".join(f"{v:.1f}" for v in paired) if paired else "-"
-        pair_ratio = f"{r['ms_median'] / statistics.mean(paired):.2f}" if paired else "-"
+        ratios = r.get("paired_ratios")
+        pair_ratio = (", ".join(f"{q:.2f}" for q in ratios) +
+                      f" ({statistics.median(ratios):.2f})") if ratios else "-"
         print(f"| {r['dataset']} | {'x'.join(map(str, r['dims']))} | {r['slice_spacing']:g} "
               f"| {r['ms_median']:.1f} | {r['fps']:.2f} | {'-' if c is None else f'{c:.1f}'} "
               f"| {ratio} | {pair_text} | {pair_ratio} |")
@@ -195,7 +224,11 @@ def main():
     ap.add_argument("--frames", type=int, default=0, help="timed frames (default: the spec's)")
     ap.add_argument("--cutaway-bench", default="",
                     help="cutaway_bench binary: time its ray caster just before and after VTK")
+    ap.add_argument("--rounds", type=int, default=3,
+                    help="VTK runs per dataset, each between two of cutaway's (default 3)")
     args = ap.parse_args()
+    if args.rounds < 1:
+        ap.error(f"--rounds {args.rounds}: expected at least 1")
     try:
         import vtk
     except ImportError:
@@ -217,17 +250,19 @@ def main():
     for path in specs:
         with open(path) as f:
             spec = json.load(f)
-        before = cutaway_raycast_ms(args.cutaway_bench, spec, args.frames) \
-            if args.cutaway_bench else None
-        records = bench_spec(vtk, spec, os.path.dirname(path), args.frames, version)
-        if before is not None:
-            after = cutaway_raycast_ms(args.cutaway_bench, spec, args.frames)
-            for r in records:
-                d = round(float(r["slice_spacing"]), 6)
-                if d in before and d in after:
-                    r["cutaway_paired_ms"] = [round(before[d], 1), round(after[d], 1)]
-                    print(f"vtk_bench: {spec['dataset']} d={d:g}: cutaway's ray caster "
-                          f"{before[d]:.1f} ms before, {after[d]:.1f} ms after", file=sys.stderr)
+        def cutaway():
+            return [cutaway_raycast_ms(args.cutaway_bench, spec, args.frames)] \
+                if args.cutaway_bench else []
+        cutaway_runs, vtk_rounds = cutaway(), []
+        for _ in range(args.rounds):
+            vtk_rounds.append(bench_spec(vtk, spec, os.path.dirname(path), args.frames, version))
+            cutaway_runs += cutaway()
+        records = merge_rounds(vtk_rounds, cutaway_runs)
+        for r in records:
+            if "paired_ratios" in r:
+                print(f"vtk_bench: {spec['dataset']} d={r['slice_spacing']:g}: cutaway's ray "
+                      f"caster {r['cutaway_paired_ms']} ms around VTK's rounds, ratios "
+                      f"{r['paired_ratios']}", file=sys.stderr)
         mine += records
 
     others = []
