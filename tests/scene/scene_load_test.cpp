@@ -121,9 +121,11 @@ TEST(SceneLoad, EveryExampleSceneParses) {
     }
 }
 
-TEST(SceneLoad, DemoSceneIsTheHeadPhantom) {
+// The default demo needs no scan and shows what cutaway is for: an operator.
+TEST(SceneLoad, DemoSceneIsTheHeadPhantomWithAnOperator) {
     const Scene scene = loadScene(kSourceDir / "scenes/demo.json");
     EXPECT_EQ(scene.volume.phantom, "head");
+    EXPECT_EQ(scene.operators.size(), 1u);
     EXPECT_EQ(scene.volume.phantomSize, glm::ivec3(160));
     EXPECT_EQ(scene.render.width, 512);
     EXPECT_TRUE(scene.output.png);
