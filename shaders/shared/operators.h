@@ -93,7 +93,9 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 //             skin (e = 0) is not a cut, and neither is the hinge.
 //   hole:     - min(distance to the hole's bottom, sides, end and hinge
 //             planes, distance to the flap): the lifted region x in (h, 1],
-//             |y| < halfWidth, z in [1 - t, 1], where the flap is not.
+//             |y| < halfWidth, z in [1 - t, 1], where the flap is not. Where
+//             the flap passes within 2 gap of those faces, the material it
+//             carves there (below) does not count (peelerClearance).
 //   air:      z > 1 and not on the flap. It maps to itself; within 2t of the
 //             flap it counts as empty (w = |d - t| - t < 0, d = distance to the
 //             flap) so that w changes sign at every face where the pre-image
@@ -107,7 +109,7 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 //             as the air within 2t, with the flap's pre-image continued up to
 //             gap. Without the gap, the map interpolated between the flap and
 //             that material, both with w > 0, showed a lattice of samples from
-//             neither.
+//             neither. The gap is a cut: beyond it w is at most d - 2 gap.
 // ---------------------------------------------------------------------------
 
 CW_FUNC vec3 peelerRadial(float phi) {
@@ -242,14 +244,31 @@ CW_FUNC vec3 peelerContinued(vec3 q, vec3 f, OperatorParams o) {
     return vec3(o.a.x + f.x, q.y, 1.0f - f.y);
 }
 
+// Whether the flap carves a gap in untouched material near q: where its
+// pre-image continued to q is a gap or more from q (so not at the hinge,
+// where the two meet continuously).
+CW_FUNC bool peelerGapCarves(vec3 q, vec3 f, OperatorParams o) {
+    return f.x >= 0.0f && length(peelerContinued(q, f, o) - q) > 2.0f * o.b.y;
+}
+
 // Whether untouched material at q, at distance d from the flap, lies in the
 // gap carved around a flap that swept into it, lies on it, or passes the
 // hole's wall beside it (where both sides have w > 0 up to the wall): nearer
-// the flap than the gap, with the flap's pre-image a gap or more away (so not
-// at the hinge, where the two meet continuously).
+// the flap than the gap, where the flap carves one.
 CW_FUNC bool peelerInGap(vec3 q, vec3 f, float d, OperatorParams o) {
-    float gap = 2.0f * o.b.y;
-    return f.x >= 0.0f && d < gap && length(peelerContinued(q, f, o) - q) > gap;
+    return d < 2.0f * o.b.y && peelerGapCarves(q, f, o);
+}
+
+// Distance from q, in the hole or the air at distance d from the flap, to the
+// material the operator leaves in place. Material within 2 gap of the flap is
+// carved (peelerInGap), so where that holds at q too, kept material is at
+// least 2 gap - d away: a thick flap whose underside crosses the hole's end
+// face passes within a texel of it, and with the face's distance alone no
+// texel between them was clearly empty, so the map blended the flap's
+// pre-image with the identity there (bright dots of skull in the air).
+CW_FUNC float peelerClearance(vec3 q, vec3 f, float d, OperatorParams o) {
+    float untouched = peelerUntouchedDistance(q, o);
+    return peelerInGap(q, f, d, o) ? max(untouched, 2.0f * o.b.y - d) : untouched;
 }
 
 // Whether q, off the flap with bend coordinates f and at distance d from it,
@@ -262,7 +281,7 @@ CW_FUNC bool peelerContinues(vec3 q, vec3 f, float d, OperatorParams o) {
         if (q.z <= 1.0f) return d < o.b.y && peelerInGap(q, f, d, o); // material
         if (d >= o.a.y) return false;                                 // air beyond t
     }
-    return d < peelerUntouchedDistance(q, o);
+    return d < peelerClearance(q, f, d, o);
 }
 
 CW_FUNC vec4 peelerBackward(vec3 q, OperatorParams o) {
@@ -289,10 +308,15 @@ CW_FUNC vec4 peelerBackward(vec3 q, OperatorParams o) {
     float d = peelerFlapDistance(q, o);
     vec3 p = peelerContinues(q, f, d, o) ? peelerContinued(q, f, o) : q;
     if (material) {
-        if (peelerInGap(q, f, d, o)) w = min(w, abs(d - o.b.y) - o.b.y);
+        // The gap is a cut: beyond it w is also at most the distance to it,
+        // d - 2 gap. Had w jumped there from 0 to the hole faces' distance,
+        // a texel cell spanning the gap's outer half (one is wider than a
+        // gap along its diagonal) would blend the flap's pre-image continued
+        // with the identity at w > 0: dots of skin in the air.
+        if (peelerGapCarves(q, f, o)) w = min(w, abs(d - o.b.y) - o.b.y);
         return vec4(p, w);
     }
-    if (inHole) return vec4(p, -min(peelerUntouchedDistance(q, o), d));
+    if (inHole) return vec4(p, -min(peelerClearance(q, f, d, o), d));
     return vec4(p, min(w, abs(d - t) - t)); // air
 }
 

