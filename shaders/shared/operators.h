@@ -147,6 +147,32 @@ CW_FUNC vec3 peelerForward(vec3 p, OperatorParams o) {
     return vec3(q.x, p.y, q.z);
 }
 
+// Distances in the xz-plane from q to the flap's cross section: x to its
+// bend (an annular sector around the axis), y to its straight part (a
+// rectangle; meaningless when it has none).
+CW_FUNC vec2 peelerSectionDistances(vec3 q, OperatorParams o) {
+    float radius = o.a.z;
+    float outer = radius + o.a.y;
+    vec2 end = peelerFlapEnd(o);
+    vec3 v = vec3(q.x - o.a.x, 0.0f, q.z - (1.0f + radius));
+    float r = length(v);
+    float phi = atan(v.x, -v.z);
+    float sector;
+    if (phi >= 0.0f && phi <= end.x) {
+        sector = max(max(radius - r, r - outer), 0.0f);
+    } else { // nearest point on one of the two radial edges
+        vec3 n0 = peelerRadial(0.0f);
+        vec3 n1 = peelerRadial(end.x);
+        sector = min(length(v - clamp(dot(v, n0), radius, outer) * n0),
+                     length(v - clamp(dot(v, n1), radius, outer) * n1));
+    }
+    float a = dot(v, peelerRadial(o.a.w));
+    float b = dot(v, peelerTangent(o.a.w));
+    float straight =
+        length(vec2(max(max(radius - a, a - outer), 0.0f), max(max(-b, b - end.y), 0.0f)));
+    return vec2(sector, straight);
+}
+
 // Bend coordinates of q: (s, e, part) with part 0 on the flap's bend, 1 on
 // its straight part; off the flap -2 (bend coordinates) or -1 (straight-part
 // coordinates), and s < 0 where they mean nothing (behind the hinge).
@@ -158,6 +184,14 @@ CW_FUNC vec3 peelerFlapCoords(vec3 q, OperatorParams o) {
     float s;
     float e;
     float part;
+    // Past the fold angle and nearer the straight part than the bend: a fold
+    // beyond a right angle also puts the material behind the hinge past it,
+    // which meets the flap at the hinge (bend coordinates, s < 0); with the
+    // straight part's it was carved as a gap with a pre-image far above it.
+    if (along > 0.0f && peelerFlapEnd(o).y > 0.0f) {
+        vec2 parts = peelerSectionDistances(q, o);
+        if (parts.y > parts.x) along = 0.0f;
+    }
     if (along > 0.0f && peelerFlapEnd(o).y > 0.0f) {
         s = radius * theta + along;
         e = dot(v, peelerRadial(theta)) - radius;
@@ -184,29 +218,10 @@ CW_FUNC float peelerEndDistance(vec3 q, OperatorParams o) {
 }
 
 // Distance from q (outside the flap) to the flap: in the xz-plane to its cross
-// section (an annular sector around the axis plus the straight rectangle),
-// then combined with how far |y| is beyond the half width.
+// section, then combined with how far |y| is beyond the half width.
 CW_FUNC float peelerFlapDistance(vec3 q, OperatorParams o) {
-    float radius = o.a.z;
-    float outer = radius + o.a.y;
-    vec2 end = peelerFlapEnd(o);
-    vec3 v = vec3(q.x - o.a.x, 0.0f, q.z - (1.0f + radius));
-    float r = length(v);
-    float phi = atan(v.x, -v.z);
-    float sector;
-    if (phi >= 0.0f && phi <= end.x) {
-        sector = max(max(radius - r, r - outer), 0.0f);
-    } else { // nearest point on one of the two radial edges
-        vec3 n0 = peelerRadial(0.0f);
-        vec3 n1 = peelerRadial(end.x);
-        sector = min(length(v - clamp(dot(v, n0), radius, outer) * n0),
-                     length(v - clamp(dot(v, n1), radius, outer) * n1));
-    }
-    float a = dot(v, peelerRadial(o.a.w));
-    float b = dot(v, peelerTangent(o.a.w));
-    float straight =
-        length(vec2(max(max(radius - a, a - outer), 0.0f), max(max(-b, b - end.y), 0.0f)));
-    float d = end.y > 0.0f ? min(sector, straight) : sector;
+    vec2 parts = peelerSectionDistances(q, o);
+    float d = peelerFlapEnd(o).y > 0.0f ? min(parts.x, parts.y) : parts.x;
     return length(vec2(d, max(abs(q.y) - peelerHalfWidth(o), 0.0f)));
 }
 
