@@ -188,11 +188,12 @@ CW_FUNC vec3 peelerFlapCoords(vec3 q, OperatorParams o) {
     // beyond a right angle also puts the material behind the hinge past it,
     // which meets the flap at the hinge (bend coordinates, s < 0); with the
     // straight part's it was carved as a gap with a pre-image far above it.
-    if (along > 0.0f && peelerFlapEnd(o).y > 0.0f) {
+    bool straight = along > 0.0f && peelerFlapEnd(o).y > 0.0f;
+    if (straight) {
         vec2 parts = peelerSectionDistances(q, o);
-        if (parts.y > parts.x) along = 0.0f;
+        straight = parts.y <= parts.x;
     }
-    if (along > 0.0f && peelerFlapEnd(o).y > 0.0f) {
+    if (straight) {
         s = radius * theta + along;
         e = dot(v, peelerRadial(theta)) - radius;
         part = 1.0f;
