@@ -14,10 +14,9 @@
 #include "core/process_memory.hpp"
 #include "gpu/context.hpp"
 #include "interrupt.hpp"
+#include "job/export_volume.hpp"
 #include "job/render_job.hpp"
 #include "job/sequence.hpp"
-#include "operators/deformed_volume.hpp"
-#include "operators/operator_geometry.hpp"
 #include "progress.hpp"
 #include "scene/animation.hpp"
 #include "scene/scene.hpp"
@@ -132,28 +131,7 @@ int runExport(const ExportArgs& args) {
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
     const int frame = args.frame >= 0 ? args.frame : base.animation.firstFrame;
     const cutaway::Scene scene = cutaway::sceneAtFrame(base, frame);
-    // The export has no feature fields (the distance field and segment masks
-    // are baked on the device), so it says where its volume differs from the
-    // render rather than leaving the user to find out.
-    for (const cutaway::OperatorSpec& op : scene.operators)
-        if (op.alignment.mode != cutaway::AlignmentMode::Axis)
-            std::fprintf(stderr,
-                         "cutaway: warning: %s: %s-aligned in the scene, exported as "
-                         "axis-aligned (the feature it keeps in place moves with it here)\n",
-                         op.name.c_str(),
-                         op.alignment.mode == cutaway::AlignmentMode::Surface ? "surface"
-                                                                              : "segment");
-    const cutaway::Volume volume = cutaway::job::loadSceneVolume(scene);
-    // Empty voxels (cuts, openings) take the smallest value: air in CT, background in MRI.
-    const float empty = static_cast<float>(cutaway::valueRange(volume).min);
-    const auto placed = cutaway::operators::centred(volume);
-    cutaway::Volume deformed;
-    if (scene.render.composition == cutaway::Composition::Sequential) {
-        deformed = cutaway::operators::resampleSequentially(placed, scene.operators, empty).volume;
-    } else {
-        cutaway::operators::checkNoOverlap(scene.operators);
-        deformed = cutaway::operators::resampleDeformed(placed, scene.operators, empty).volume;
-    }
+    const cutaway::Volume deformed = cutaway::job::exportVolume(scene);
     cutaway::writeNrrd(out, deformed, !args.raw);
     if (isatty(STDERR_FILENO))
         std::fprintf(stderr, "wrote %s: frame %d, %d x %d x %d float32 voxels\n",

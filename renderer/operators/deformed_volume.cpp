@@ -1,35 +1,68 @@
 #include "operators/deformed_volume.hpp"
 
 #include "operators/operator_geometry.hpp"
+#include "shared/feature.h"
 #include "shared/operators.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 namespace cutaway::operators {
 namespace {
 
-// Trilinear interpolation of physical values at a world point (mm, origin at
-// the volume's centre), clamped at the edge texels like the GPU sampler.
-// Returns false outside the volume's box.
-bool sample(const PlacedVolume& in, glm::dvec3 world, double& value) {
-    const Volume& v = in.volume;
-    const glm::dvec3 t = (world - in.worldLo) / v.extent();
-    if (glm::any(glm::lessThan(t, glm::dvec3(0.0))) ||
-        glm::any(glm::greaterThan(t, glm::dvec3(1.0))))
-        return false;
-    const glm::dvec3 p = t * glm::dvec3(v.dims) - 0.5;
-    const glm::ivec3 i0 = glm::ivec3(glm::floor(p));
-    const glm::dvec3 f = p - glm::dvec3(i0);
-    value = 0.0;
+// A world point (mm, origin at the volume's centre) in the volume's grid:
+// its continuous voxel coordinate (voxel centres at whole numbers) and
+// whether it lies in the volume's box (the shader's inVolume).
+struct GridPoint {
+    glm::dvec3 voxel;
+    bool inside = false;
+};
+
+GridPoint locate(const PlacedVolume& in, glm::dvec3 world) {
+    const glm::dvec3 t = (world - in.worldLo) / in.volume.extent();
+    return {t * glm::dvec3(in.volume.dims) - 0.5,
+            glm::all(glm::greaterThanEqual(t, glm::dvec3(0.0))) &&
+                glm::all(glm::lessThanEqual(t, glm::dvec3(1.0)))};
+}
+
+// Trilinear interpolation of at(x, y, z) at a voxel coordinate, clamped at the
+// edge voxels like the GPU sampler.
+template <class At>
+double trilinear(glm::ivec3 dims, glm::dvec3 voxel, At&& at) {
+    const glm::ivec3 i0 = glm::ivec3(glm::floor(voxel));
+    const glm::dvec3 f = voxel - glm::dvec3(i0);
+    double value = 0.0;
     for (int c = 0; c < 8; ++c) {
         const glm::ivec3 o(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-        const glm::ivec3 q = glm::clamp(i0 + o, glm::ivec3(0), v.dims - 1);
+        const glm::ivec3 q = glm::clamp(i0 + o, glm::ivec3(0), dims - 1);
         const double w = (o.x ? f.x : 1 - f.x) * (o.y ? f.y : 1 - f.y) * (o.z ? f.z : 1 - f.z);
-        if (w != 0.0) value += w * v.value(q.x, q.y, q.z);
+        if (w != 0.0) value += w * at(q.x, q.y, q.z);
     }
-    return true;
+    return value;
+}
+
+// An operator placed in the world, with the feature field its alignment reads.
+struct Placed {
+    const OperatorSpec* spec;
+    WorldBox box;
+    glm::dmat4 worldToLocal;
+    std::vector<float> field; // on the input's grid; empty for axis alignment
+};
+
+// The feature mask M at a point of the input's grid (maskAt in the shader's
+// operator_sample.h): 0 for axis alignment.
+float maskAt(const Placed& op, const Volume& grid, glm::dvec3 voxel) {
+    if (op.field.empty()) return 0.0f;
+    const float f = static_cast<float>(trilinear(
+        grid.dims, voxel, [&](int x, int y, int z) { return op.field[grid.index(x, y, z)]; }));
+    const Alignment& a = op.spec->alignment;
+    if (a.mode == AlignmentMode::Surface)
+        return shader::surfaceMask(f, static_cast<float>(a.depth), static_cast<float>(a.band));
+    const glm::ivec3 nearest =
+        glm::clamp(glm::ivec3(glm::floor(voxel + 0.5)), glm::ivec3(0), grid.dims - 1);
+    return shader::segmentMask(f, op.field[grid.index(nearest.x, nearest.y, nearest.z)] >= 0.5f);
 }
 
 } // namespace
@@ -40,27 +73,29 @@ PlacedVolume centred(Volume volume) {
 }
 
 PlacedVolume resampleSequentially(const PlacedVolume& in,
-                                  const std::vector<OperatorSpec>& operators, float emptyValue) {
+                                  const std::vector<OperatorSpec>& operators, float emptyValue,
+                                  const FeatureFieldMaker& fieldFor) {
     PlacedVolume current = in;
     for (const OperatorSpec& op : operators)
-        current = resampleDeformed(current, {op}, emptyValue);
+        current = resampleDeformed(current, {op}, emptyValue, fieldFor);
     return current;
 }
 
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
-                              float emptyValue) {
+                              float emptyValue, const FeatureFieldMaker& fieldFor) {
     const Volume& volume = in.volume;
-    struct Placed {
-        const OperatorSpec* spec;
-        WorldBox box;
-        glm::dmat4 worldToLocal;
-    };
     std::vector<Placed> placed;
     glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
     const glm::dvec3 volumeLo = lo;
     for (const OperatorSpec& op : operators) {
         const WorldBox box{op.localToWorld, materialBounds(op.params)};
-        placed.push_back({&op, box, glm::inverse(op.localToWorld)});
+        std::vector<float> field;
+        if (fieldFor && op.alignment.mode != AlignmentMode::Axis) {
+            field = fieldFor(volume, op);
+            if (field.size() != volume.voxelCount())
+                throw std::logic_error("resampleDeformed: a feature field off the volume's grid");
+        }
+        placed.push_back({&op, box, glm::inverse(op.localToWorld), std::move(field)});
         lo = glm::min(lo, box.lo());
         hi = glm::max(hi, box.hi());
     }
@@ -76,22 +111,31 @@ PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<Operator
     for (int z = 0; z < out.dims.z; ++z)
         for (int y = 0; y < out.dims.y; ++y)
             for (int x = 0; x < out.dims.x; ++x) {
-                glm::dvec3 p = lo + (glm::dvec3(x, y, z) + 0.5) * s;
-                bool empty = false;
+                const glm::dvec3 pPrime = lo + (glm::dvec3(x, y, z) + 0.5) * s;
+                GridPoint p = locate(in, pPrime); // where the value comes from
                 for (const Placed& op : placed) {
-                    const glm::dvec3 q(op.worldToLocal * glm::dvec4(p, 1.0));
+                    const glm::dvec3 q(op.worldToLocal * glm::dvec4(pPrime, 1.0));
                     if (glm::any(glm::lessThan(q, op.box.local.lo)) ||
                         glm::any(glm::greaterThan(q, op.box.local.hi)))
                         continue;
+                    // Eq. 3 and 4, as the shader's resolve() does them.
                     const glm::vec4 b = shader::operatorBackward(glm::vec3(q), op.spec->params);
-                    empty = b.w <= 0.0f;
-                    p = glm::dvec3(op.spec->localToWorld *
-                                   glm::dvec4(glm::dvec3(glm::vec3(b)), 1.0));
+                    const GridPoint p0 = locate(
+                        in, glm::dvec3(op.spec->localToWorld * glm::dvec4(glm::vec3(b), 1.0)));
+                    const bool p0Valid = b.w > 0.0f && p0.inside;
+                    const int which = shader::featureCase(
+                        p0Valid, p0Valid ? maskAt(op, volume, p0.voxel) : 0.0f, p.inside,
+                        p.inside ? maskAt(op, volume, p.voxel) : 0.0f);
+                    if (which == CW_CASE_TRANSFORMED) p = p0;
+                    if (which == CW_CASE_EMPTY) p.inside = false;
                     break; // deformed boxes do not overlap
                 }
-                double value = 0.0;
                 data[out.index(x, y, z)] =
-                    !empty && sample(in, p, value) ? static_cast<float>(value) : emptyValue;
+                    p.inside ? static_cast<float>(trilinear(volume.dims, p.voxel,
+                                                            [&](int vx, int vy, int vz) {
+                                                                return volume.value(vx, vy, vz);
+                                                            }))
+                             : emptyValue;
             }
     return PlacedVolume{std::move(out), lo};
 }

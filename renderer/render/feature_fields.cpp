@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <functional>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -86,36 +85,18 @@ gpu::Image FeatureFields::indicatorTexture(const OperatorSpec& spec,
                                            const GpuVolume& volume) const {
     // Written into the upload's staging a few slices at a time: the indicator
     // is never whole on the host (it would add a byte per voxel to the bake's peak).
-    const Alignment& a = spec.alignment;
-    bool any = false;
-    std::function<bool(std::size_t)> inside;
-    std::optional<LabelBytes> labels;
-    if (a.range) {
-        inside = [&, lo = (*a.range)[0], hi = (*a.range)[1]](std::size_t i) {
-            const double v = volume.scan->value(i);
-            return v >= lo && v <= hi;
-        };
-    } else {
-        if (!volume.labels)
-            throw InputError(spec.name + ": segment alignment by labels needs a label volume");
-        labels.emplace(labelIndicator(*volume.labels, a.labels));
-    }
+    SegmentIndicator segment(spec, *volume.scan, volume.labels.get());
     gpu::Image texture = gpu::createSampledVolume(
         m_ctx, VK_FORMAT_R8_UNORM,
         {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)}, 1,
         [&](std::size_t first, std::size_t count, std::byte* dst) {
             auto* out = reinterpret_cast<std::uint8_t*>(dst);
-            if (labels) labels->write(first, count, out);
-            for (std::size_t j = 0; j < count; ++j) {
-                const bool in = labels ? out[j] != 0 : inside(first + j);
-                out[j] = in ? 255 : 0; // R8_UNORM 1 inside
-                any = any || in;
-            }
+            segment.write(first, count, out);
+            for (std::size_t j = 0; j < count; ++j)
+                out[j] = out[j] ? 255 : 0; // R8_UNORM 1 inside
         },
         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
-    if (!any)
-        throw InputError(spec.name + ": the segment of its alignment is empty (no voxel " +
-                         (a.range ? "has a value in the range" : "has one of the labels") + ")");
+    segment.checkNotEmpty();
     return texture;
 }
 

@@ -1,5 +1,7 @@
 #include "render/label_classes.hpp"
 
+#include "core/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -67,6 +69,35 @@ LabelBytes labelIndicator(const Volume& labels, const std::vector<std::int64_t>&
     for (const std::int64_t id : ids)
         map[id] = 1;
     return LabelBytes(labels, std::move(map));
+}
+
+SegmentIndicator::SegmentIndicator(const OperatorSpec& spec, const Volume& scan,
+                                   const Volume* labels)
+    : m_spec(spec), m_scan(scan) {
+    if (spec.alignment.range) return;
+    if (!labels) throw InputError(spec.name + ": segment alignment by labels needs a label volume");
+    m_labels.emplace(labelIndicator(*labels, spec.alignment.labels));
+}
+
+void SegmentIndicator::write(std::size_t first, std::size_t count, std::uint8_t* out) {
+    if (m_labels) {
+        m_labels->write(first, count, out);
+    } else {
+        const auto [lo, hi] = *m_spec.alignment.range;
+        for (std::size_t j = 0; j < count; ++j) {
+            const double v = m_scan.value(first + j);
+            out[j] = v >= lo && v <= hi ? 1 : 0;
+        }
+    }
+    for (std::size_t j = 0; j < count && !m_any; ++j)
+        m_any = out[j] != 0;
+}
+
+void SegmentIndicator::checkNotEmpty() const {
+    if (!m_any)
+        throw InputError(
+            m_spec.name + ": the segment of its alignment is empty (no voxel " +
+            (m_spec.alignment.range ? "has a value in the range" : "has one of the labels") + ")");
 }
 
 } // namespace cutaway::render

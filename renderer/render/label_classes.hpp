@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -37,5 +38,26 @@ LabelBytes classLayers(const Volume& labels, const std::vector<LabelTransfer>& t
 
 /// Per voxel: 1 where the label is one of `ids`, else 0.
 LabelBytes labelIndicator(const Volume& labels, const std::vector<std::int64_t>& ids);
+
+/// The segment of interest of a segment alignment (`spec.alignment`), a byte
+/// per voxel, 1 inside: the voxels of `scan` whose value lies in its range,
+/// or whose label in `labels` is one of its labels. Keeps references to both.
+class SegmentIndicator {
+public:
+    /// Throws InputError naming the operator when it asks for labels and
+    /// `labels` is null.
+    SegmentIndicator(const OperatorSpec& spec, const Volume& scan, const Volume* labels);
+    /// The bytes of voxels [first, first + count), x fastest.
+    void write(std::size_t first, std::size_t count, std::uint8_t* out);
+    /// Throws InputError naming the operator when no voxel written so far was
+    /// inside: the operator would have nothing to keep in place.
+    void checkNotEmpty() const;
+
+private:
+    const OperatorSpec& m_spec;
+    const Volume& m_scan;
+    std::optional<LabelBytes> m_labels;
+    bool m_any = false;
+};
 
 } // namespace cutaway::render

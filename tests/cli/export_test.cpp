@@ -1,5 +1,6 @@
 // `cutaway export`: the deformed volume resampled for other tools.
 #include "cli_util.hpp"
+#include "job/export_volume.hpp"
 #include "operators/deformed_volume.hpp"
 #include "scene/scene.hpp"
 #include "volume/phantom.hpp"
@@ -94,23 +95,19 @@ TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
     EXPECT_FALSE(std::filesystem::exists(m_dir / "o.nrrd"));
 }
 
-// The export evaluates every operator as axis-aligned; it says so for those
-// that are not, naming them, and still writes the file.
-TEST_F(CliTest, ExportWarnsThatAnAlignedOperatorIsExportedAxisAligned) {
-    const auto scene = write("a.json", R"({ "version": 1,
+// An aligned operator's segment with no voxel is bad input, as in a render:
+// the export names the operator, exits 2 and writes nothing.
+TEST_F(CliTest, ExportRefusesAnAlignedOperatorWithAnEmptySegment) {
+    const auto scene = write("e.json", R"({ "version": 1,
         "volume": { "phantom": "head", "size": [24, 24, 24] },
         "operators": [
           { "type": "peeler", "name": "scalp flap", "placement": { "translate": [0, 0, 8], "scale": [16, 16, 8] },
-            "alignment": { "mode": "surface", "depth": 2 } },
-          { "type": "dilator", "name": "lens", "placement": { "translate": [0, 0, -8], "scale": [8, 8, 8] } } ] })");
-    CommandResult r = runCutaway("export " + scene.string() + " -o " + (m_dir / "a.nrrd").string());
-    ASSERT_EQ(r.code, 0) << r.output;
-    EXPECT_TRUE(std::filesystem::exists(m_dir / "a.nrrd"));
-    EXPECT_NE(r.output.find("warning: scalp flap: surface-aligned in the scene, exported as "
-                            "axis-aligned"),
-              std::string::npos)
+            "alignment": { "mode": "segment", "range": [300, 400] } } ] })");
+    CommandResult r = runCutaway("export " + scene.string() + " -o " + (m_dir / "e.nrrd").string());
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("scalp flap: the segment of its alignment is empty"), std::string::npos)
         << r.output;
-    EXPECT_EQ(r.output.find("lens"), std::string::npos) << "axis-aligned: no warning\n" << r.output;
+    EXPECT_FALSE(std::filesystem::exists(m_dir / "e.nrrd"));
 }
 
 } // namespace cutaway::test
