@@ -4,7 +4,7 @@
 //                  [--set /json/pointer=VALUE ...] [--png] [--skip-existing] [--fail-fast]
 //                  [--device NAME] [--quiet]
 //   cutaway validate SCENE [--set ...]
-//   cutaway export SCENE [--frame N] -o OUT.nrrd [--set ...] [--raw]
+//   cutaway export SCENE [--frame N] -o OUT.nrrd [--labels-output L.nrrd] [--set ...] [--raw]
 //   cutaway info FILE
 //   cutaway devices
 //
@@ -120,6 +120,7 @@ struct ExportArgs {
     std::string scene;
     std::string output;
     std::vector<std::string> sets;
+    std::string labelsOutput;
     int frame = -1;
     bool raw = false;
 };
@@ -131,12 +132,26 @@ int runExport(const ExportArgs& args) {
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
     const int frame = args.frame >= 0 ? args.frame : base.animation.firstFrame;
     const cutaway::Scene scene = cutaway::sceneAtFrame(base, frame);
-    const cutaway::Volume deformed = cutaway::job::exportVolume(scene);
-    cutaway::writeNrrd(out, deformed, !args.raw);
-    if (isatty(STDERR_FILENO))
-        std::fprintf(stderr, "wrote %s: frame %d, %d x %d x %d float32 voxels\n",
-                     out.string().c_str(), frame, deformed.dims.x, deformed.dims.y,
-                     deformed.dims.z);
+    const std::filesystem::path labelsOut(args.labelsOutput);
+    if (!args.labelsOutput.empty()) {
+        if (labelsOut.extension() != ".nrrd")
+            throw cutaway::InputError("--labels-output " + args.labelsOutput +
+                                      ": expected a .nrrd file name");
+        if (!scene.labels)
+            throw cutaway::InputError("--labels-output " + args.labelsOutput + ": " + args.scene +
+                                      " has no /labels");
+    }
+    const cutaway::job::Exported exported =
+        cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
+    const auto write = [&](const std::filesystem::path& path, const cutaway::Volume& v) {
+        cutaway::writeNrrd(path, v, !args.raw);
+        if (isatty(STDERR_FILENO))
+            std::fprintf(stderr, "wrote %s: frame %d, %d x %d x %d %s voxels\n",
+                         path.string().c_str(), frame, v.dims.x, v.dims.y, v.dims.z,
+                         std::string(cutaway::voxelTypeName(v.type)).c_str());
+    };
+    write(out, exported.volume);
+    if (exported.labels) write(labelsOut, *exported.labels);
     return 0;
 }
 
@@ -192,6 +207,8 @@ int main(int argc, char** argv) {
         ->check(CLI::NonNegativeNumber);
     exportCommand->add_option("--set", exportArgs.sets,
                               "Override a scene value: /json/pointer=VALUE");
+    exportCommand->add_option("--labels-output", exportArgs.labelsOutput,
+                              "Also write the scene's label volume, deformed alike (.nrrd)");
     exportCommand->add_flag("--raw", exportArgs.raw, "Raw encoding instead of gzip");
 
     std::string infoFile;

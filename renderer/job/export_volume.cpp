@@ -1,12 +1,14 @@
 #include "job/export_volume.hpp"
 
 #include "bake/feature_bake.hpp"
+#include "core/error.hpp"
 #include "job/render_job.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/label_classes.hpp"
 #include "volume/otsu.hpp"
 #include "volume/segmentation.hpp"
 
+#include <map>
 #include <memory>
 
 namespace cutaway::job {
@@ -26,27 +28,50 @@ std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
     return bake::smoothMaskCpu(indicator, volume.dims, volume.spacing, a.band);
 }
 
-Volume exportVolume(const Scene& scene) {
+Exported exportVolume(const Scene& scene, bool withLabels) {
+    if (withLabels && !scene.labels) throw InputError("the scene has no /labels to export");
     Volume scan = loadSceneVolume(scene);
     const float empty = static_cast<float>(valueRange(scan).min);
-    // Under sequential composition with several operators the parser allows
-    // no labels (the scan is resampled); with one, it is separate composition.
     const bool sequential =
         scene.render.composition == Composition::Sequential && scene.operators.size() > 1;
+    // Segments by labels: the parser allows them only where the operator
+    // applies to the scan itself (not under sequential composition).
     bool byLabels = false;
     for (const OperatorSpec& op : scene.operators)
         byLabels = byLabels || (op.alignment.mode == AlignmentMode::Segment && !op.alignment.range);
     const std::shared_ptr<const Volume> labels =
-        byLabels && !sequential ? loadSceneLabels(scene, std::make_shared<const Volume>(scan))
-                                : nullptr;
+        byLabels || withLabels ? loadSceneLabels(scene, std::make_shared<const Volume>(scan))
+                               : nullptr;
+    // Each operator's field is made once, from the volume it applies to (the
+    // scan, or under sequential composition what the operators before it
+    // left), and read again for the labels, whose grids are the scan's.
+    std::map<const OperatorSpec*, operators::FeatureField> fields;
     const auto fieldFor = [&](const Volume& volume, const OperatorSpec& op) {
-        return featureFieldCpu(volume, labels.get(), op);
+        operators::FeatureField& field = fields[&op];
+        if (!field)
+            field = std::make_shared<const std::vector<float>>(
+                featureFieldCpu(volume, labels.get(), op));
+        return field;
     };
+    const auto deform = [&](const operators::PlacedVolume& in, float emptyValue,
+                            operators::Sampling sampling) {
+        return sequential ? operators::resampleSequentially(in, scene.operators, emptyValue,
+                                                            fieldFor, sampling)
+                          : operators::resampleDeformed(in, scene.operators, emptyValue, fieldFor,
+                                                        sampling);
+    };
+    if (!sequential) operators::checkNoOverlap(scene.operators);
     const operators::PlacedVolume placed = operators::centred(std::move(scan));
-    if (sequential)
-        return operators::resampleSequentially(placed, scene.operators, empty, fieldFor).volume;
-    operators::checkNoOverlap(scene.operators);
-    return operators::resampleDeformed(placed, scene.operators, empty, fieldFor).volume;
+    Exported result;
+    result.volume = deform(placed, empty, operators::Sampling::Trilinear).volume;
+    if (withLabels) {
+        // On the scan's grid exactly (loadSceneLabels allows spacings 0.1 %
+        // apart), so that every step's grid and feature field are the scan's.
+        operators::PlacedVolume labelled{*labels, placed.worldLo};
+        labelled.volume.spacing = placed.volume.spacing;
+        result.labels = deform(labelled, 0.0f, operators::Sampling::Nearest).volume;
+    }
+    return result;
 }
 
 } // namespace cutaway::job

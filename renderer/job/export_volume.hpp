@@ -8,6 +8,7 @@
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
+#include <optional>
 #include <vector>
 
 namespace cutaway::job {
@@ -21,9 +22,18 @@ namespace cutaway::job {
 std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
                                    const OperatorSpec& op);
 
+/// What `cutaway export` writes for one frame.
+struct Exported {
+    Volume volume;                ///< the scan deformed, float32
+    std::optional<Volume> labels; ///< the label volume deformed alike, when asked for
+};
+
 /// The volume of `scene` (one frame: see sceneAtFrame) deformed by all its
 /// operators, in their composition. Cuts and openings take the scan's
-/// smallest value (air in CT, background in MRI).
-Volume exportVolume(const Scene& scene);
+/// smallest value (air in CT, background in MRI). With `withLabels`, also
+/// its label volume (/labels, which the scene must have) through the same
+/// maps, each voxel taking the label nearest to its pre-image: ids are never
+/// blended, and cuts are background (0).
+Exported exportVolume(const Scene& scene, bool withLabels = false);
 
 } // namespace cutaway::job

@@ -48,21 +48,22 @@ struct Placed {
     const OperatorSpec* spec;
     WorldBox box;
     glm::dmat4 worldToLocal;
-    std::vector<float> field; // on the input's grid; empty for axis alignment
+    FeatureField field; // on the input's grid; null for axis alignment
 };
 
 // The feature mask M at a point of the input's grid (maskAt in the shader's
 // operator_sample.h): 0 for axis alignment.
 float maskAt(const Placed& op, const Volume& grid, glm::dvec3 voxel) {
-    if (op.field.empty()) return 0.0f;
+    if (!op.field) return 0.0f;
+    const std::vector<float>& field = *op.field;
     const float f = static_cast<float>(trilinear(
-        grid.dims, voxel, [&](int x, int y, int z) { return op.field[grid.index(x, y, z)]; }));
+        grid.dims, voxel, [&](int x, int y, int z) { return field[grid.index(x, y, z)]; }));
     const Alignment& a = op.spec->alignment;
     if (a.mode == AlignmentMode::Surface)
         return shader::surfaceMask(f, static_cast<float>(a.depth), static_cast<float>(a.band));
     const glm::ivec3 nearest =
         glm::clamp(glm::ivec3(glm::floor(voxel + 0.5)), glm::ivec3(0), grid.dims - 1);
-    return shader::segmentMask(f, op.field[grid.index(nearest.x, nearest.y, nearest.z)] >= 0.5f);
+    return shader::segmentMask(f, field[grid.index(nearest.x, nearest.y, nearest.z)] >= 0.5f);
 }
 
 } // namespace
@@ -74,25 +75,26 @@ PlacedVolume centred(Volume volume) {
 
 PlacedVolume resampleSequentially(const PlacedVolume& in,
                                   const std::vector<OperatorSpec>& operators, float emptyValue,
-                                  const FeatureFieldMaker& fieldFor) {
+                                  const FeatureFieldMaker& fieldFor, Sampling sampling) {
     PlacedVolume current = in;
     for (const OperatorSpec& op : operators)
-        current = resampleDeformed(current, {op}, emptyValue, fieldFor);
+        current = resampleDeformed(current, {op}, emptyValue, fieldFor, sampling);
     return current;
 }
 
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
-                              float emptyValue, const FeatureFieldMaker& fieldFor) {
+                              float emptyValue, const FeatureFieldMaker& fieldFor,
+                              Sampling sampling) {
     const Volume& volume = in.volume;
     std::vector<Placed> placed;
     glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
     const glm::dvec3 volumeLo = lo;
     for (const OperatorSpec& op : operators) {
         const WorldBox box{op.localToWorld, materialBounds(op.params)};
-        std::vector<float> field;
+        FeatureField field;
         if (fieldFor && op.alignment.mode != AlignmentMode::Axis) {
             field = fieldFor(volume, op);
-            if (field.size() != volume.voxelCount())
+            if (!field || field->size() != volume.voxelCount())
                 throw std::logic_error("resampleDeformed: a feature field off the volume's grid");
         }
         placed.push_back({&op, box, glm::inverse(op.localToWorld), std::move(field)});
@@ -104,9 +106,33 @@ PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<Operator
     const glm::dvec3 loVox = glm::floor((lo - volumeLo) / s + 1e-9);
     const glm::dvec3 hiVox = glm::ceil((hi - volumeLo) / s - 1e-9);
     lo = volumeLo + loVox * s;
-    Volume out = Volume::allocate(glm::ivec3(hiVox - loVox), VoxelType::F32, s);
+    const bool nearest = sampling == Sampling::Nearest;
+    Volume out =
+        Volume::allocate(glm::ivec3(hiVox - loVox), nearest ? volume.type : VoxelType::F32, s);
     out.origin = volume.origin + loVox * s;
-    float* data = reinterpret_cast<float*>(out.data.data());
+    if (nearest) {
+        out.slope = volume.slope;
+        out.inter = volume.inter;
+    }
+    const std::size_t bytes = voxelSize(out.type);
+    // Writes output voxel i from the input at p (nothing: empty).
+    const auto write = [&](std::size_t i, const GridPoint& p) {
+        std::byte* dst = out.data.data() + i * bytes;
+        if (nearest) {
+            if (!p.inside) return; // allocate() zeroed it
+            const glm::ivec3 v =
+                glm::clamp(glm::ivec3(glm::floor(p.voxel + 0.5)), glm::ivec3(0), volume.dims - 1);
+            std::memcpy(dst, volume.data.data() + volume.index(v.x, v.y, v.z) * bytes, bytes);
+            return;
+        }
+        const float value = p.inside
+                                ? static_cast<float>(trilinear(volume.dims, p.voxel,
+                                                               [&](int vx, int vy, int vz) {
+                                                                   return volume.value(vx, vy, vz);
+                                                               }))
+                                : emptyValue;
+        std::memcpy(dst, &value, sizeof value);
+    };
 
     for (int z = 0; z < out.dims.z; ++z)
         for (int y = 0; y < out.dims.y; ++y)
@@ -130,12 +156,7 @@ PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<Operator
                     if (which == CW_CASE_EMPTY) p.inside = false;
                     break; // deformed boxes do not overlap
                 }
-                data[out.index(x, y, z)] =
-                    p.inside ? static_cast<float>(trilinear(volume.dims, p.voxel,
-                                                            [&](int vx, int vy, int vz) {
-                                                                return volume.value(vx, vy, vz);
-                                                            }))
-                             : emptyValue;
+                write(out.index(x, y, z), p);
             }
     return PlacedVolume{std::move(out), lo};
 }

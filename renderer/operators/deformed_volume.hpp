@@ -9,6 +9,7 @@
 #include "volume/volume.hpp"
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace cutaway::operators {
@@ -23,28 +24,38 @@ struct PlacedVolume {
 /// The scan as the scene places it: centred on the world's origin.
 PlacedVolume centred(Volume volume);
 
-/// Makes the field an aligned operator's feature mask M comes from, on the
-/// grid of the volume `op` applies to (x fastest), as the renderer bakes it
+/// The field an aligned operator's feature mask M comes from, on the grid of
+/// the volume the operator applies to (x fastest), as the renderer bakes it
 /// (bake/feature_bake.hpp): the distance field DT in mm for surface
 /// alignment, the encoded smoothed segment for segment alignment.
-using FeatureFieldMaker =
-    std::function<std::vector<float>(const Volume& volume, const OperatorSpec& op)>;
+using FeatureField = std::shared_ptr<const std::vector<float>>;
+/// Makes (or finds) the feature field of `op`'s alignment for `volume`.
+using FeatureFieldMaker = std::function<FeatureField(const Volume& volume, const OperatorSpec& op)>;
+
+/// How resampleDeformed reads the input at a point.
+enum class Sampling {
+    Trilinear, ///< physical values, interpolated; the result is float32 (a scan)
+    Nearest    ///< the nearest voxel's stored number, in the input's type (labels)
+};
 
 /// Resamples `in` deformed by `operators` (which must not overlap) on a grid
 /// with its spacing that covers it and every operator's material (so a lifted
 /// flap is kept). Voxels in a cut, or with no pre-image in the volume, get
-/// `emptyValue`. The result is float32; untouched voxels keep their values
-/// and positions (its `origin` moves with the grid). `fieldFor` makes the
-/// feature fields of the operators that are not axis-aligned; without it
-/// every operator is evaluated as axis-aligned.
+/// `emptyValue` (Nearest: the stored number 0, a label volume's background).
+/// Untouched voxels keep their values and positions (the result's `origin`
+/// moves with the grid). `fieldFor` makes the feature fields of the operators
+/// that are not axis-aligned, on `in`'s grid; without it every operator is
+/// evaluated as axis-aligned.
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
-                              float emptyValue, const FeatureFieldMaker& fieldFor = {});
+                              float emptyValue, const FeatureFieldMaker& fieldFor = {},
+                              Sampling sampling = Sampling::Trilinear);
 
 /// Sequential composition (the paper's "save the intermediate volume"): each
 /// operator applies to the volume the previous ones left (and an aligned
 /// one's feature field is made from that volume).
 PlacedVolume resampleSequentially(const PlacedVolume& in,
                                   const std::vector<OperatorSpec>& operators, float emptyValue,
-                                  const FeatureFieldMaker& fieldFor = {});
+                                  const FeatureFieldMaker& fieldFor = {},
+                                  Sampling sampling = Sampling::Trilinear);
 
 } // namespace cutaway::operators

@@ -95,6 +95,40 @@ TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
     EXPECT_FALSE(std::filesystem::exists(m_dir / "o.nrrd"));
 }
 
+// --labels-output writes the label volume deformed alike, in its own type,
+// on the scan's export grid; a scene without labels is refused before
+// anything is written.
+TEST_F(CliTest, ExportWritesTheLabelsDeformedAlike) {
+    const std::string scene = R"({ "version": 1,
+        "volume": { "phantom": "head", "size": [24, 24, 24] },)";
+    const std::string op = R"(
+        "operators": [ { "type": "peeler", "placement": { "translate": [0, 0, 8], "scale": [16, 16, 8] },
+                         "params": { "angle": 120 } } ] })";
+    const auto labelled = write("l.json", scene + R"( "labels": { "phantom": true },)" + op);
+    CommandResult r =
+        runCutaway("export " + labelled.string() + " -o " + (m_dir / "v.nrrd").string() +
+                   " --labels-output " + (m_dir / "l.nrrd").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const Volume values = readVolume(m_dir / "v.nrrd");
+    const Volume labels = readVolume(m_dir / "l.nrrd");
+    EXPECT_EQ(labels.dims, values.dims);
+    EXPECT_GT(labels.dims.z, 24) << "the lifted flap grows the grid";
+    EXPECT_EQ(labels.type, VoxelType::U8);
+    double most = 0.0;
+    for (std::size_t i = 0; i < labels.voxelCount(); ++i)
+        most = std::max(most, labels.value(i));
+    EXPECT_EQ(most, 3.0) << "ids kept, never blended";
+
+    const auto bare = write("b.json", scene + op);
+    CommandResult b = runCutaway("export " + bare.string() + " -o " + (m_dir / "bv.nrrd").string() +
+                                 " --labels-output " + (m_dir / "bl.nrrd").string());
+    EXPECT_EQ(b.code, 2) << b.output;
+    EXPECT_NE(b.output.find("--labels-output"), std::string::npos) << b.output;
+    EXPECT_NE(b.output.find("has no /labels"), std::string::npos) << b.output;
+    EXPECT_FALSE(std::filesystem::exists(m_dir / "bv.nrrd"));
+    EXPECT_FALSE(std::filesystem::exists(m_dir / "bl.nrrd"));
+}
+
 // An aligned operator's segment with no voxel is bad input, as in a render:
 // the export names the operator, exits 2 and writes nothing.
 TEST_F(CliTest, ExportRefusesAnAlignedOperatorWithAnEmptySegment) {

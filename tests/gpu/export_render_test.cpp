@@ -45,7 +45,7 @@ protected:
         const Scene scene = parseScene(peeledHead(alignment), "/nonexistent", "export render");
         Pair p;
         p.rendered = job::renderImage(ctx(), scene);
-        const Volume deformed = job::exportVolume(scene);
+        const Volume deformed = job::exportVolume(scene).volume;
         // The renderer centres a volume on the origin; the export's grid grew
         // (the flap rises above the scan), so the camera looks at where the
         // scan's centre now lies.
