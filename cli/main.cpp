@@ -140,6 +140,9 @@ int runExport(const ExportArgs& args) {
         if (!scene.labels)
             throw cutaway::InputError("--labels-output " + args.labelsOutput + ": " + args.scene +
                                       " has no /labels");
+        if (std::filesystem::weakly_canonical(labelsOut) == std::filesystem::weakly_canonical(out))
+            throw cutaway::InputError("--labels-output " + args.labelsOutput +
+                                      ": the same file as -o");
     }
     const cutaway::job::Exported exported =
         cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
@@ -151,7 +154,15 @@ int runExport(const ExportArgs& args) {
                          std::string(cutaway::voxelTypeName(v.type)).c_str());
     };
     write(out, exported.volume);
-    if (exported.labels) write(labelsOut, *exported.labels);
+    if (exported.labels) {
+        try {
+            write(labelsOut, *exported.labels);
+        } catch (...) { // both files or neither
+            std::error_code ignored;
+            std::filesystem::remove(out, ignored);
+            throw;
+        }
+    }
     return 0;
 }
 

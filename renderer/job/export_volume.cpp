@@ -30,8 +30,8 @@ std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
 
 Exported exportVolume(const Scene& scene, bool withLabels) {
     if (withLabels && !scene.labels) throw InputError("the scene has no /labels to export");
-    Volume scan = loadSceneVolume(scene);
-    const float empty = static_cast<float>(valueRange(scan).min);
+    auto scan = std::make_shared<Volume>(loadSceneVolume(scene));
+    const float empty = emptyValue(scene, *scan);
     const bool sequential =
         scene.render.composition == Composition::Sequential && scene.operators.size() > 1;
     // Segments by labels: the parser allows them only where the operator
@@ -40,8 +40,7 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
     for (const OperatorSpec& op : scene.operators)
         byLabels = byLabels || (op.alignment.mode == AlignmentMode::Segment && !op.alignment.range);
     const std::shared_ptr<const Volume> labels =
-        byLabels || withLabels ? loadSceneLabels(scene, std::make_shared<const Volume>(scan))
-                               : nullptr;
+        byLabels || withLabels ? loadSceneLabels(scene, scan) : nullptr;
     // Each operator's field is made once, from the volume it applies to (the
     // scan, or under sequential composition what the operators before it
     // left), and read again for the labels, whose grids are the scan's.
@@ -61,14 +60,19 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
                                                         sampling);
     };
     if (!sequential) operators::checkNoOverlap(scene.operators);
-    const operators::PlacedVolume placed = operators::centred(std::move(scan));
+    // The scan moves into place unless it is also the label volume.
+    const operators::PlacedVolume placed =
+        operators::centred(labels.get() == scan.get() ? Volume(*scan) : std::move(*scan));
+    scan.reset();
     Exported result;
     result.volume = deform(placed, empty, operators::Sampling::Trilinear).volume;
     if (withLabels) {
         // On the scan's grid exactly (loadSceneLabels allows spacings 0.1 %
-        // apart), so that every step's grid and feature field are the scan's.
+        // apart, and the render ignores origins), so that every step's grid
+        // and feature field are the scan's and the two files overlay.
         operators::PlacedVolume labelled{*labels, placed.worldLo};
         labelled.volume.spacing = placed.volume.spacing;
+        labelled.volume.origin = placed.volume.origin;
         result.labels = deform(labelled, 0.0f, operators::Sampling::Nearest).volume;
     }
     return result;

@@ -6,6 +6,7 @@
 #include "render/slice_renderer.hpp"
 #include "volume/phantom.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <regex>
 #include <sstream>
@@ -94,6 +95,10 @@ bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {
     return {range.min, range.min + 1.0};
 }
 
+float emptyValue(const Scene& scene, const Volume& scan) {
+    return static_cast<float>(std::min(sceneWindow(scene, scan).lo, valueRange(scan).min));
+}
+
 namespace {
 
 bool sequential(const Scene& scene) {
@@ -115,16 +120,16 @@ FrameVolume frameVolume(const Scene& scene) {
         scan = loadSceneVolume(scene);
     }
     const bake::ValueWindow window = sceneWindow(scene, scan);
+    const float empty = sequential(scene) ? emptyValue(scene, scan) : 0.0f;
     operators::PlacedVolume placed = operators::centred(std::move(scan));
     if (sequential(scene)) {
         const std::vector<OperatorSpec> baked(scene.operators.begin(), scene.operators.end() - 1);
-        // Empty space takes the bottom of the window: transparent under any
-        // transfer function that is transparent for air.
-        placed = operators::resampleSequentially(placed, baked, static_cast<float>(window.lo));
+        placed = operators::resampleSequentially(placed, baked, empty);
     }
     auto shared = std::make_shared<const Volume>(std::move(placed.volume));
-    // Sequential composition with several operators resamples the scan; the
-    // parser allows no labels then (they would no longer match it).
+    // Sequential composition with several operators resamples the scan but
+    // not its labels, which no longer match it: the frame has none (the
+    // parser refuses what would need them).
     std::shared_ptr<const Volume> labels =
         sequential(scene) ? nullptr
         : phantomLabels   ? checkedLabels(scene, std::move(*phantomLabels), *shared)

@@ -42,6 +42,13 @@ void checkSceneMeshes(const Scene& scene);
 /// volume gets a window of width 1 so normalization stays defined).
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
 
+/// What empty space (cuts, openings, the space a flap lifts into) holds when
+/// the CPU resamples the scan (sequential composition, `cutaway export`): the
+/// lower of the scan's smallest value and the window's bottom. Transparent
+/// under any transfer function that is transparent for air, and background
+/// to an aligned operator's threshold or value range made from the result.
+float emptyValue(const Scene& scene, const Volume& scan);
+
 /// The volume a frame renders and its value window: the scan itself, or under
 /// sequential composition the scan deformed by every operator but the last
 /// (resampled on the CPU). The window is always the scan's.

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <span>
 #include <stdexcept>
 
 namespace cutaway::operators {
@@ -73,23 +74,40 @@ PlacedVolume centred(Volume volume) {
     return PlacedVolume{std::move(volume), lo};
 }
 
+namespace {
+
+// resampleDeformed over operators [first, first + count): `fieldFor` sees
+// references into the caller's own list.
+PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
+                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling);
+
+} // namespace
+
 PlacedVolume resampleSequentially(const PlacedVolume& in,
                                   const std::vector<OperatorSpec>& operators, float emptyValue,
                                   const FeatureFieldMaker& fieldFor, Sampling sampling) {
-    PlacedVolume current = in;
-    for (const OperatorSpec& op : operators)
-        current = resampleDeformed(current, {op}, emptyValue, fieldFor, sampling);
+    if (operators.empty()) return in;
+    PlacedVolume current = resample(in, &operators[0], 1, emptyValue, fieldFor, sampling);
+    for (std::size_t i = 1; i < operators.size(); ++i)
+        current = resample(current, &operators[i], 1, emptyValue, fieldFor, sampling);
     return current;
 }
 
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
                               float emptyValue, const FeatureFieldMaker& fieldFor,
                               Sampling sampling) {
+    return resample(in, operators.data(), operators.size(), emptyValue, fieldFor, sampling);
+}
+
+namespace {
+
+PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
+                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling) {
     const Volume& volume = in.volume;
     std::vector<Placed> placed;
     glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
     const glm::dvec3 volumeLo = lo;
-    for (const OperatorSpec& op : operators) {
+    for (const OperatorSpec& op : std::span(first, count)) {
         const WorldBox box{op.localToWorld, materialBounds(op.params)};
         FeatureField field;
         if (fieldFor && op.alignment.mode != AlignmentMode::Axis) {
@@ -161,4 +179,5 @@ PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<Operator
     return PlacedVolume{std::move(out), lo};
 }
 
+} // namespace
 } // namespace cutaway::operators

@@ -29,7 +29,9 @@ PlacedVolume centred(Volume volume);
 /// (bake/feature_bake.hpp): the distance field DT in mm for surface
 /// alignment, the encoded smoothed segment for segment alignment.
 using FeatureField = std::shared_ptr<const std::vector<float>>;
-/// Makes (or finds) the feature field of `op`'s alignment for `volume`.
+/// Makes (or finds) the feature field of `op`'s alignment for `volume`; `op`
+/// is an element of the operator list given to resampleDeformed or
+/// resampleSequentially (its address is stable while they run).
 using FeatureFieldMaker = std::function<FeatureField(const Volume& volume, const OperatorSpec& op)>;
 
 /// How resampleDeformed reads the input at a point.

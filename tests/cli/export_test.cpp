@@ -5,6 +5,7 @@
 #include "scene/scene.hpp"
 #include "volume/phantom.hpp"
 
+#include <array>
 #include <filesystem>
 #include <gtest/gtest.h>
 
@@ -96,30 +97,46 @@ TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
 }
 
 // --labels-output writes the label volume deformed alike, in its own type,
-// on the scan's export grid; a scene without labels is refused before
-// anything is written.
+// on the scan's export grid (even where the label file's origin differs from
+// the scan's: the render ignores origins, so the files must overlay); bad
+// uses are refused before anything is written.
 TEST_F(CliTest, ExportWritesTheLabelsDeformedAlike) {
-    const std::string scene = R"({ "version": 1,
-        "volume": { "phantom": "head", "size": [24, 24, 24] },)";
+    Phantom head = makePhantom("head", glm::ivec3(24));
+    head.values.origin = glm::dvec3(10.0, -20.0, 5.0);
+    writeNrrd(m_dir / "scan.nrrd", head.values);
+    writeNrrd(m_dir / "labels.nrrd", head.labels); // origin 0
     const std::string op = R"(
         "operators": [ { "type": "peeler", "placement": { "translate": [0, 0, 8], "scale": [16, 16, 8] },
                          "params": { "angle": 120 } } ] })";
-    const auto labelled = write("l.json", scene + R"( "labels": { "phantom": true },)" + op);
+    const auto labelled = write("l.json", R"({ "version": 1, "volume": { "file": "scan.nrrd" },
+        "labels": { "file": "labels.nrrd" },)" +
+                                              op);
+    const std::string v = (m_dir / "v.nrrd").string(), l = (m_dir / "l.nrrd").string();
     CommandResult r =
-        runCutaway("export " + labelled.string() + " -o " + (m_dir / "v.nrrd").string() +
-                   " --labels-output " + (m_dir / "l.nrrd").string());
+        runCutaway("export " + labelled.string() + " -o " + v + " --labels-output " + l);
     ASSERT_EQ(r.code, 0) << r.output;
-    const Volume values = readVolume(m_dir / "v.nrrd");
-    const Volume labels = readVolume(m_dir / "l.nrrd");
+    const Volume values = readVolume(v);
+    const Volume labels = readVolume(l);
     EXPECT_EQ(labels.dims, values.dims);
     EXPECT_GT(labels.dims.z, 24) << "the lifted flap grows the grid";
+    EXPECT_EQ(labels.origin, values.origin);
     EXPECT_EQ(labels.type, VoxelType::U8);
-    double most = 0.0;
+    std::array<int, 256> count{};
     for (std::size_t i = 0; i < labels.voxelCount(); ++i)
-        most = std::max(most, labels.value(i));
-    EXPECT_EQ(most, 3.0) << "ids kept, never blended";
+        ++count[std::size_t(labels.raw(i))];
+    for (int id = 0; id < 4; ++id)
+        EXPECT_GT(count[std::size_t(id)], 0) << "label " << id;
+    EXPECT_EQ(count[0] + count[1] + count[2] + count[3], int(labels.voxelCount()))
+        << "only the phantom's ids";
 
-    const auto bare = write("b.json", scene + op);
+    // The same file twice, and a scene without labels: refused, nothing written.
+    const std::string same = (m_dir / "same.nrrd").string();
+    CommandResult twice =
+        runCutaway("export " + labelled.string() + " -o " + same + " --labels-output " + same);
+    EXPECT_EQ(twice.code, 2) << twice.output;
+    EXPECT_NE(twice.output.find("the same file as -o"), std::string::npos) << twice.output;
+    EXPECT_FALSE(std::filesystem::exists(same));
+    const auto bare = write("b.json", R"({ "version": 1, "volume": { "file": "scan.nrrd" },)" + op);
     CommandResult b = runCutaway("export " + bare.string() + " -o " + (m_dir / "bv.nrrd").string() +
                                  " --labels-output " + (m_dir / "bl.nrrd").string());
     EXPECT_EQ(b.code, 2) << b.output;
