@@ -2,6 +2,7 @@
 // feature stays where it is, the rest moves as without alignment or is cut.
 // Checked per voxel against the same scene with its operator axis-aligned.
 #include "job/export_volume.hpp"
+#include "job/render_job.hpp"
 #include "scene/scene.hpp"
 #include "volume/phantom.hpp"
 
@@ -319,6 +320,36 @@ TEST(ExportLabels, LabelsFollowSequentialComposition) {
     EXPECT_GT(kept, before / 2);
     EXPECT_NEAR(upperSkullInPlace(e), kept, 0.02 * kept);
     EXPECT_LT(upperSkullInPlace(axis), before - 300) << "control: the peeler lifts the skull";
+}
+
+} // namespace cutaway::test
+
+namespace cutaway::test {
+
+// The render's sequential pre-pass fills its cuts as the export does: with the
+// scan's smallest value where the window starts above it (so a surface
+// threshold between the two sees the cuts as background), which normalizes to
+// the same texel as the window's bottom.
+TEST(ExportLabels, SequentialCutsHoldTheScansSmallestValue) {
+    json scene = peelerScene({{"mode", "axis"}});
+    scene["volume"]["window"] = {60, 255};
+    scene["render"] = {{"operator_composition", "sequential"}};
+    scene["operators"].push_back(json{
+        {"type", "dilator"}, {"placement", {{"translate", {0, 0, -12}}, {"scale", {8, 8, 8}}}}});
+    const Scene s = parse(scene);
+    const Volume scan = phantom().values;
+    EXPECT_EQ(job::emptyValue(s, scan), 0.0f);
+    const job::FrameVolume frame = job::frameVolume(s);
+    const auto count = [](const Volume& v, double value) {
+        int n = 0;
+        for (std::size_t i = 0; i < v.voxelCount(); ++i)
+            n += v.value(i) == value ? 1 : 0;
+        return n;
+    };
+    // The peeler's hole and the space its flap lifts into are empty, and
+    // hold 0, not 60 (a few voxels still are 60: resampled tissue).
+    EXPECT_GT(count(*frame.scan, 0.0), count(scan, 0.0) + 1000);
+    EXPECT_LT(count(*frame.scan, 60.0), count(scan, 60.0) + 100) << "cuts at the window's bottom";
 }
 
 } // namespace cutaway::test
