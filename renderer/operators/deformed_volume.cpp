@@ -44,6 +44,12 @@ double trilinear(glm::ivec3 dims, glm::dvec3 voxel, At&& at) {
     return value;
 }
 
+// The voxel nearest to a voxel coordinate, clamped to the grid (the shader's
+// texelFetch at floor(tc * dims)).
+glm::ivec3 nearestVoxel(glm::ivec3 dims, glm::dvec3 voxel) {
+    return glm::clamp(glm::ivec3(glm::floor(voxel + 0.5)), glm::ivec3(0), dims - 1);
+}
+
 // An operator placed in the world, with the feature field its alignment reads.
 struct Placed {
     const OperatorSpec* spec;
@@ -62,8 +68,7 @@ float maskAt(const Placed& op, const Volume& grid, glm::dvec3 voxel) {
     const Alignment& a = op.spec->alignment;
     if (a.mode == AlignmentMode::Surface)
         return shader::surfaceMask(f, static_cast<float>(a.depth), static_cast<float>(a.band));
-    const glm::ivec3 nearest =
-        glm::clamp(glm::ivec3(glm::floor(voxel + 0.5)), glm::ivec3(0), grid.dims - 1);
+    const glm::ivec3 nearest = nearestVoxel(grid.dims, voxel);
     return shader::segmentMask(f, field[grid.index(nearest.x, nearest.y, nearest.z)] >= 0.5f);
 }
 
@@ -138,8 +143,7 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
         std::byte* dst = out.data.data() + i * bytes;
         if (nearest) {
             if (!p.inside) return; // allocate() zeroed it
-            const glm::ivec3 v =
-                glm::clamp(glm::ivec3(glm::floor(p.voxel + 0.5)), glm::ivec3(0), volume.dims - 1);
+            const glm::ivec3 v = nearestVoxel(volume.dims, p.voxel);
             std::memcpy(dst, volume.data.data() + volume.index(v.x, v.y, v.z) * bytes, bytes);
             return;
         }
