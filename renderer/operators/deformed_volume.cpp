@@ -1,7 +1,9 @@
 #include "operators/deformed_volume.hpp"
 
+#include "operators/moved_value.hpp"
 #include "operators/operator_geometry.hpp"
 #include "shared/feature.h"
+#include "shared/feature_bake.h"
 #include "shared/operators.h"
 
 #include <algorithm>
@@ -19,6 +21,9 @@ namespace {
 struct GridPoint {
     glm::dvec3 voxel;
     bool inside = false;
+    /// The segment mask of the segment-aligned operator this point moved
+    /// with: its trilinear sample reads movedValueAt (moved_value.hpp).
+    const std::vector<float>* movedOffSegment = nullptr;
 };
 
 GridPoint locate(const PlacedVolume& in, glm::dvec3 world) {
@@ -147,12 +152,20 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
             std::memcpy(dst, volume.data.data() + volume.index(v.x, v.y, v.z) * bytes, bytes);
             return;
         }
-        const float value = p.inside
-                                ? static_cast<float>(trilinear(volume.dims, p.voxel,
-                                                               [&](int vx, int vy, int vz) {
-                                                                   return volume.value(vx, vy, vz);
-                                                               }))
-                                : emptyValue;
+        const auto valueAt = [&](int vx, int vy, int vz) { return volume.value(vx, vy, vz); };
+        const auto movedAt = [&](int vx, int vy, int vz) {
+            const std::vector<float>& mask = *p.movedOffSegment;
+            if (!shader::maskInside(mask[volume.index(vx, vy, vz)]))
+                return volume.value(vx, vy, vz);
+            return double(
+                movedValueAt(volume.dims, {vx, vy, vz}, valueAt,
+                             [&](int x, int y, int z) { return mask[volume.index(x, y, z)]; }));
+        };
+        float value = emptyValue;
+        if (p.inside)
+            value =
+                static_cast<float>(p.movedOffSegment ? trilinear(volume.dims, p.voxel, movedAt)
+                                                     : trilinear(volume.dims, p.voxel, valueAt));
         std::memcpy(dst, &value, sizeof value);
     };
 
@@ -174,7 +187,11 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
                     const int which = shader::featureCase(
                         p0Valid, p0Valid ? maskAt(op, volume, p0.voxel) : 0.0f, p.inside,
                         p.inside ? maskAt(op, volume, p.voxel) : 0.0f);
-                    if (which == CW_CASE_TRANSFORMED) p = p0;
+                    if (which == CW_CASE_TRANSFORMED) {
+                        p = p0;
+                        if (op.spec->alignment.mode == AlignmentMode::Segment)
+                            p.movedOffSegment = op.field.get();
+                    }
                     if (which == CW_CASE_EMPTY) p.inside = false;
                     break; // deformed boxes do not overlap
                 }

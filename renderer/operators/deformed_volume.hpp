@@ -4,7 +4,9 @@
 // mapped back through the operator whose deformed box holds it (the analytic
 // continuous T_B of the shared header, Eq. 2, 6, 8), kept in place where an
 // aligned operator's feature is (Eq. 3, 4 with the masks of shared/feature.h)
-// and sampled trilinearly. CPU only: no device needed.
+// and sampled trilinearly; material that moves off a segment reads the
+// values the renderer's region texture holds (moved_value.hpp). CPU only: no
+// device needed.
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 

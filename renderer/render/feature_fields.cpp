@@ -100,12 +100,17 @@ gpu::Image FeatureFields::indicatorTexture(const OperatorSpec& spec,
     return texture;
 }
 
-const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVolume& volume) {
+const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVolume& volume,
+                                          std::uint64_t* id) {
     const Alignment& a = spec.alignment;
+    if (id) *id = 0;
     if (a.mode == AlignmentMode::Axis) return m_none;
     const auto [k, note] = describe(a, volume);
     auto found = m_fields.find(k);
-    if (found != m_fields.end()) return found->second;
+    if (found != m_fields.end()) {
+        if (id) *id = found->second.id;
+        return found->second.image;
+    }
 
     const auto start = std::chrono::steady_clock::now();
     gpu::Image field;
@@ -124,7 +129,9 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     std::snprintf(took, sizeof took, "%.2f", seconds);
     m_notes.push_back(spec.name + ": " + note + ", baked in " + took + " s");
     ++m_bakes;
-    return m_fields.emplace(k, std::move(field)).first->second;
+    const Field& made = m_fields.emplace(k, Field{std::move(field), m_nextId++}).first->second;
+    if (id) *id = made.id;
+    return made.image;
 }
 
 std::vector<std::string> FeatureFields::takeNotes() {

@@ -8,6 +8,7 @@
 #include "render/gpu_volume.hpp"
 #include "scene/scene.hpp"
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,10 +19,14 @@ class FeatureFields {
 public:
     explicit FeatureFields(const gpu::Context& ctx);
 
-    /// The texture `spec`'s alignment reads: RGBA16F over the volume's grid
-    /// (surface: gradient and DT in mm; segment: gradient and M), or a 1^3
-    /// texture for axis alignment. Valid until the next call of keepOnly.
-    const gpu::Image& fieldFor(const OperatorSpec& spec, const GpuVolume& volume);
+    /// The field `spec`'s alignment reads: R16F over the volume's grid
+    /// (surface: DT in mm; segment: M, which the operator's shader reads
+    /// through its region, bake/feature_region.hpp), or a 1^3 texture for
+    /// axis alignment. Valid until the next call of keepOnly.
+    /// `id`, if given, receives a number that differs between any two fields
+    /// this object made (0: the 1^3 texture).
+    const gpu::Image& fieldFor(const OperatorSpec& spec, const GpuVolume& volume,
+                               std::uint64_t* id = nullptr);
 
     /// Frees the fields none of `specs` reads. Called once per frame before
     /// fieldFor, so a field no longer wanted is gone before a new one bakes
@@ -52,7 +57,12 @@ private:
     gpu::Image m_none;
     std::uint64_t m_serial = 0;
     std::optional<double> m_otsu;
-    std::map<std::string, gpu::Image> m_fields;
+    struct Field {
+        gpu::Image image;
+        std::uint64_t id = 0;
+    };
+    std::map<std::string, Field> m_fields;
+    std::uint64_t m_nextId = 1;
     std::vector<std::string> m_notes;
     int m_bakes = 0;
 };

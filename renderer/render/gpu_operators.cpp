@@ -20,7 +20,8 @@ bool sameMap(const OperatorSpec& a, const OperatorSpec& b) {
 }
 
 shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::WorldBox& box,
-                                    std::size_t index, const GpuVolume& volume) {
+                                    std::size_t index, const GpuVolume& volume,
+                                    const gpu::Image& region, bake::VoxelRegion voxels) {
     shader::OperatorUniforms u{};
     u.localToWorld = glm::mat4(spec.localToWorld);
     u.worldToLocal = glm::mat4(glm::inverse(spec.localToWorld));
@@ -39,6 +40,15 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
                         static_cast<float>(al.band));
     // The feature field is on the volume's grid (a 1^3 texture for axis alignment).
     u.featureScale = glm::vec4(glm::vec3(0.5 / volume.spacing), 0.0f);
+    // Segment alignment's texture covers a region: voxel lo + j of the grid
+    // is its texel j.
+    u.featureTc = glm::vec4(1.0f);
+    u.featureTc0 = glm::vec4(0.0f);
+    if (region.image) {
+        const glm::dvec3 size(voxels.size);
+        u.featureTc = glm::vec4(glm::vec3(glm::dvec3(volume.dims) / size), 0.0f);
+        u.featureTc0 = glm::vec4(glm::vec3(-glm::dvec3(voxels.lo) / size), 0.0f);
+    }
     u.blocks = glm::vec4(glm::vec3(spec.resolution) / float(kOperatorBlockTexels), 0.0f);
     return u;
 }
@@ -47,7 +57,8 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
 
 OperatorStack::OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setLayout,
                              VkSampler sampler)
-    : m_ctx(ctx), m_setLayout(setLayout), m_sampler(sampler), m_baker(ctx), m_features(ctx) {}
+    : m_ctx(ctx), m_setLayout(setLayout), m_sampler(sampler), m_baker(ctx), m_regionBaker(ctx),
+      m_features(ctx) {}
 
 void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolume& volume) {
     // Deformed bounds depend only on the parameters: keep them while the map is kept.
@@ -86,12 +97,29 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
             ++m_bakes;
         }
-        const gpu::Image& feature = m_features.fieldFor(spec, volume);
+        std::uint64_t fieldId = 0;
+        const gpu::Image& field = m_features.fieldFor(spec, volume, &fieldId);
+        const gpu::Image* feature = &field;
+        if (spec.alignment.mode == AlignmentMode::Segment) {
+            // The region the map reads: its deformed box holds p' and p0.
+            const bake::VoxelRegion voxels = bake::regionCovering(
+                volume.dims, volume.spacing, volume.box.lo, op->box.lo(), op->box.hi());
+            if (!op->region.image || op->regionField != fieldId || !(op->regionVoxels == voxels)) {
+                op->region = {}; // freed before its successor is made
+                op->region = m_regionBaker.bake(volume.values, field, voxels);
+                op->regionField = fieldId;
+                op->regionVoxels = voxels;
+            }
+            feature = &op->region;
+        } else {
+            op->region = {};
+        }
         gpu::writeImageDescriptor(m_ctx, op->set.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                  feature.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                                  feature->view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                                   m_sampler);
         op->spec = spec;
-        const shader::OperatorUniforms u = uniformsOf(spec, op->box, i, volume);
+        const shader::OperatorUniforms u =
+            uniformsOf(spec, op->box, i, volume, op->region, op->regionVoxels);
         std::memcpy(op->uniforms.mapped, &u, sizeof u);
     }
 }

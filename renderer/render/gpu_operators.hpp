@@ -3,6 +3,7 @@
 // when its parameters or resolution change; moving an operator only updates
 // its uniforms), its place in the world, and the descriptor set the operator
 // slicing shader reads (set 1: uniforms, map).
+#include "bake/feature_region.hpp"
 #include "bake/operator_bake.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
@@ -11,6 +12,7 @@
 #include "render/gpu_volume.hpp"
 #include "scene/scene.hpp"
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -23,6 +25,12 @@ struct GpuOperator {
     OperatorSpec spec;
     operators::WorldBox box; ///< the deformed box in the world: the operator's proxy
     gpu::Image map;
+    /// Segment alignment: the feature texture over the operator's region
+    /// (bake/feature_region.hpp), made from the field `regionField` (its id in
+    /// FeatureFields) over `regionVoxels`; empty otherwise.
+    gpu::Image region;
+    bake::VoxelRegion regionVoxels;
+    std::uint64_t regionField = 0;
     gpu::Buffer uniforms;
     gpu::DescriptorSet set;
 };
@@ -44,6 +52,7 @@ private:
     VkDescriptorSetLayout m_setLayout;
     VkSampler m_sampler;
     bake::OperatorBaker m_baker;
+    bake::FeatureRegionBaker m_regionBaker;
     FeatureFields m_features;
     std::vector<std::unique_ptr<GpuOperator>> m_operators;
     int m_bakes = 0;

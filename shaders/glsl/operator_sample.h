@@ -8,8 +8,10 @@
 // cut's within the band D (Eq. 7).
 //
 // Every function takes the operator it works for: its uniforms `op`, its
-// baked `map`, its `feature` field (surface: DT in mm; segment: M; both R16F
-// over the volume's grid; a 1^3 texture for axis alignment) and its alignment
+// baked `map`, its `feature` field (surface: DT in mm, R16F over the volume's
+// grid; segment: RG16F over the operator's region of it, M and the value
+// moved material reads, bake/feature_region.hpp; a 1^3 texture for axis
+// alignment) and its alignment
 // `mode` (CW_ALIGN_*, a constant of the pipeline, so the compiler drops the
 // other modes' code).
 #ifndef CUTAWAY_OPERATOR_SAMPLE_H
@@ -17,6 +19,7 @@
 
 #include "glsl/sample_common.h"
 #include "shared/feature.h"
+#include "shared/feature_bake.h"
 #include "shared/operator_frame.h"
 
 vec4 mapAt(OperatorUniforms op, sampler3D map, vec3 local) {
@@ -34,16 +37,27 @@ bool inVolume(vec3 tc) {
     return all(greaterThanEqual(tc, vec3(0.0))) && all(lessThanEqual(tc, vec3(1.0)));
 }
 
+// The feature texture's coordinate of the volume's texture coordinate tc.
+vec3 featureTcOf(OperatorUniforms op, vec3 tc) {
+    return tc * op.featureTc.xyz + op.featureTc0.xyz;
+}
+
 // M at texture coordinate tc (0 for axis alignment); `f` receives the
-// feature field there (DT or M), which featureGradient reads again.
-float maskAt(OperatorUniforms op, sampler3D feature, int mode, vec3 tc, out float f) {
+// feature field there (DT or M), which featureGradient reads again, and
+// `moving` the value moved material reads there (segment alignment).
+float maskAt(OperatorUniforms op, sampler3D feature, int mode, vec3 tc, out float f,
+             out float moving) {
     f = 0.0;
+    moving = 0.0;
     if (mode == CW_ALIGN_AXIS) return 0.0;
-    f = textureLod(feature, tc, 0.0).r;
+    vec3 at = featureTcOf(op, tc);
+    vec2 texel = textureLod(feature, at, 0.0).rg;
+    f = texel.r;
     if (mode == CW_ALIGN_SURFACE) return surfaceMask(f, op.align.y, op.align.z);
+    moving = texel.g;
     ivec3 dims = textureSize(feature, 0);
-    ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
-    return segmentMask(f, texelFetch(feature, voxel, 0).r >= 0.5);
+    ivec3 voxel = clamp(ivec3(floor(at * vec3(dims))), ivec3(0), dims - 1);
+    return segmentMask(f, maskInside(texelFetch(feature, voxel, 0).r));
 }
 
 // The feature field's unit gradient (into the feature) at the voxel nearest
@@ -53,7 +67,7 @@ float maskAt(OperatorUniforms op, sampler3D feature, int mode, vec3 tc, out floa
 // (a gradient that varies within a voxel) made an operator frame 30 % slower.
 vec3 featureDirection(OperatorUniforms op, sampler3D feature, vec3 tc) {
     ivec3 dims = textureSize(feature, 0);
-    ivec3 v = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+    ivec3 v = clamp(ivec3(floor(featureTcOf(op, tc) * vec3(dims))), ivec3(0), dims - 1);
     ivec3 lo = max(v - 1, ivec3(0)), hi = min(v + 1, dims - 1);
     vec3 below = vec3(texelFetch(feature, ivec3(lo.x, v.y, v.z), 0).r,
                       texelFetch(feature, ivec3(v.x, lo.y, v.z), 0).r,
@@ -76,21 +90,29 @@ struct Resolved {
 
 // Eq. 3 and 4 for the point p' = world, and the volume's value at p (fetched
 // for an empty point too: on lavapipe a branch around it would cost as much,
-// and the ray caster keeps the value as the next slab's front).
+// and the ray caster keeps the value as the next slab's front). With segment
+// alignment a point that moves reads the feature texture's value instead
+// (the segment's own values taken out; feature_bake.h, movedValue), which
+// the mask's fetch at p0 brings along.
 Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int mode, vec3 world) {
     vec4 p0 = probe(op, map, world);
     vec3 tc0 = toTexture(p0.xyz);
     vec3 tcPrime = toTexture(world);
     bool p0Valid = p0.w > 0.0 && inVolume(tc0);
     bool primeIn = inVolume(tcPrime);
-    float f0, fPrime;
-    float m0 = maskAt(op, feature, mode, tc0, f0);
-    float mPrime = maskAt(op, feature, mode, tcPrime, fPrime);
+    float f0, fPrime, moving0, movingPrime;
+    float m0 = maskAt(op, feature, mode, tc0, f0, moving0);
+    float mPrime = maskAt(op, feature, mode, tcPrime, fPrime, movingPrime);
     Resolved r;
     r.which = featureCase(p0Valid, p0Valid ? m0 : 0.0, primeIn, primeIn ? mPrime : 0.0);
     bool masked = r.which == CW_CASE_MASKED;
     r.tc = masked ? tcPrime : tc0;
-    r.value = textureLod(volumeTex, r.tc, 0.0).r;
+    if (mode == CW_ALIGN_SEGMENT) {
+        float kept = textureLod(volumeTex, tcPrime, 0.0).r;
+        r.value = masked ? kept : moving0;
+    } else {
+        r.value = textureLod(volumeTex, r.tc, 0.0).r;
+    }
     r.feature = masked ? fPrime : f0;
     r.cutW = p0.w;
     r.m0 = m0;

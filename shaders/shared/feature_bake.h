@@ -80,6 +80,36 @@ CW_FUNC float squaredDistance(float stored) {
 CW_FUNC float maskEncode(float s, bool inside) {
     return inside ? max(s, 0.5f) : min(s, 0.498f);
 }
+// Whether a voxel whose stored M is `m` belongs to the segment.
+CW_FUNC bool maskInside(float m) {
+    return m >= 0.5f;
+}
+
+// Segment alignment's feature texture over one operator's region (the voxels
+// its baked map can read, its deformed box, and a margin): RG16F, r = M as
+// maskEncode stores it, g = the value moved material reads there (movedValue).
+// Push constants of feature_region.comp.
+struct FeatureRegionParams {
+    ivec3 lo; // the region's first voxel in the volume's grid
+    int pad0;
+    ivec3 size; // the region's voxels along each axis
+    int pad1;
+    ivec3 dims; // the volume's grid
+    int pad2;
+};
+
+// The value material that moves with the operator reads at a voxel (Eq. 4's
+// p = p0, where M(p0) < 0.5). A voxel of the segment takes the mean of its
+// neighbours outside the segment (26-connected: `outsideSum` over
+// `outsideCount`); every other voxel, and one with no such neighbour, keeps
+// its own. A point that moves has its nearest voxel outside the segment, so
+// the eight voxels of its trilinear sample lie within one step of that voxel:
+// none of them then carries the segment's value, and a scalp flap lifted off
+// the skull takes no bone along with it (with the volume's own values its
+// underside showed the skull's colour wherever the sample leaned on it).
+CW_FUNC float movedValue(float own, bool inside, float outsideSum, float outsideCount) {
+    return inside && outsideCount > 0.0f ? outsideSum / outsideCount : own;
+}
 
 CW_NAMESPACE_END
 
@@ -88,6 +118,7 @@ static_assert(sizeof(cutaway::shader::FeatureBakeParams) == 64);
 static_assert(offsetof(cutaway::shader::FeatureBakeParams, spacing) == 16);
 static_assert(offsetof(cutaway::shader::FeatureBakeParams, unused0) == 32);
 static_assert(offsetof(cutaway::shader::FeatureBakeParams, radius) == 48);
+static_assert(sizeof(cutaway::shader::FeatureRegionParams) == 48);
 #endif
 
 #endif

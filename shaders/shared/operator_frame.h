@@ -22,6 +22,8 @@ struct OperatorUniforms {
     vec4 align;        // x: CW_ALIGN_* (feature.h); y: tau, z: delta (mm, surface);
                        // w: delta for segment alignment's mask (mm, informational)
     vec4 featureScale; // xyz: 1 / (2 spacing) of the feature field's grid, 1/mm
+    vec4 featureTc;    // xyz: volume texture coordinate -> the feature texture's: times xyz,
+    vec4 featureTc0;   // plus featureTc0.xyz (segment alignment's texture covers a region)
     vec4 blocks;       // xyz: the map's texels across its domain / the texels per block
                        // (render/operator_regions.hpp; the ray caster's skipping)
 };
@@ -40,7 +42,7 @@ struct OperatorBakeParams {
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 6 * 16);
+static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 8 * 16);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, align) == 176);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, mapLo) == 128);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, band) == 160);

@@ -120,11 +120,15 @@ Counts classify(const Exports& e, const std::function<Kind(int, int, int)>& kind
     return c;
 }
 
-void expectFeatureKept(const Counts& c) {
+// `refilled`: how many voxels of the rest may differ from the axis-aligned
+// export (segment alignment: a moved point whose trilinear sample leans on
+// the segment's voxels reads them without the segment's values, see
+// operators/moved_value.hpp).
+void expectFeatureKept(const Counts& c, int refilled = 0) {
     EXPECT_GT(c.featureMoved, 200) << "control: the operator without alignment moves the feature";
     EXPECT_EQ(c.keptInPlace, c.feature) << "every feature voxel keeps its value";
     EXPECT_GT(c.otherMoved, 200) << "the rest moves with the operator";
-    EXPECT_EQ(c.otherWrong, 0) << "the rest moves as without alignment, or is cut";
+    EXPECT_LE(c.otherWrong, refilled) << "the rest moves as without alignment, or is cut";
 }
 
 } // namespace
@@ -147,15 +151,18 @@ TEST(ExportAlignment, SurfaceKeepsWhatLiesBelowItsDepth) {
 // stays, skin and brain in the box move.
 TEST(ExportAlignment, SegmentByRangeKeepsTheValuesInTheRange) {
     const Exports e = exportBoth({{"mode", "segment"}, {"range", {180, 255}}, {"band", 1}});
-    expectFeatureKept(classify(e, [&](int x, int y, int z) {
+    const Counts c = classify(e, [&](int x, int y, int z) {
         const double v = e.input.value(x, y, z);
         return v >= 180 && v <= 255 ? Kind::Feature : Kind::Other;
-    }));
+    });
+    expectFeatureKept(c, c.otherMoved / 5);
     // Nor is the skull also carried along: a moved point whose pre-image p0
-    // is the feature is empty (Eq. 4). Without alignment the flap carries
-    // the skull's values up (about 1000 voxels more of them than the scan
-    // has); with it only moved points whose trilinear sample leans on skull
-    // voxels add to them (about 150). Ignoring M at p0 adds about 2000.
+    // is the feature is empty (Eq. 4), and one whose trilinear sample leans
+    // on skull voxels reads them without the skull's values. So the skull's
+    // values are where the scan has them and nowhere else. Without alignment
+    // the flap carries them up (about 1000 voxels more than the scan has);
+    // ignoring M at p0 adds about 2000, sampling the scan's own values at
+    // moved points about 150.
     const auto bright = [](const Volume& v) {
         int n = 0;
         for (std::size_t i = 0; i < v.voxelCount(); ++i)
@@ -164,16 +171,17 @@ TEST(ExportAlignment, SegmentByRangeKeepsTheValuesInTheRange) {
     };
     const int carried = bright(e.axis) - bright(e.input);
     EXPECT_GT(carried, 300) << "control: the flap carries the skull without alignment";
-    EXPECT_LT(bright(e.aligned) - bright(e.input), 0.3 * carried);
+    EXPECT_EQ(bright(e.aligned), bright(e.input));
 }
 
 // Segment alignment by labels: the brain's voxels stay.
 TEST(ExportAlignment, SegmentByLabelsKeepsTheLabelledVoxels) {
     const Volume labels = phantom().labels;
     const Exports e = exportBoth({{"mode", "segment"}, {"labels", {"brain"}}, {"band", 1}});
-    expectFeatureKept(classify(e, [&](int x, int y, int z) {
+    const Counts c = classify(e, [&](int x, int y, int z) {
         return labels.value(x, y, z) == 3.0 ? Kind::Feature : Kind::Other;
-    }));
+    });
+    expectFeatureKept(c, c.otherMoved / 5);
 }
 
 } // namespace cutaway::test
