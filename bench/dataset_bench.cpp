@@ -1,5 +1,6 @@
 #include "dataset_bench.hpp"
 
+#include "bake/feature_region.hpp"
 #include "bake/operator_bake.hpp"
 #include "bench_util.hpp"
 #include "core/error.hpp"
@@ -86,6 +87,21 @@ nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
     });
     bakes["distance_field_ms"] = featureMs("surface");
     bakes["segment_mask_ms"] = featureMs("segment");
+    if (entry.alignments.count("segment")) {
+        // What moving a segment-aligned operator costs: its region of the
+        // mask and of the values moving material reads (bake/feature_region).
+        const Scene s = loadScene(entry.scene, rowSettings(entry, "segment", 1.0, o));
+        const OperatorSpec& op = s.operators.at(0);
+        render::FeatureFields fields(ctx);
+        const gpu::Image& mask = fields.fieldFor(op, gv);
+        const operators::WorldBox box = operators::worldBox(op);
+        const bake::VoxelRegion region =
+            bake::regionCovering(gv.dims, gv.spacing, gv.box.lo, box.lo(), box.hi());
+        const bake::FeatureRegionBaker regions(ctx);
+        bakes["segment_region_ms"] =
+            medianMs(o.bakeRepeats, [&] { regions.bake(gv.values, mask, region); });
+        bakes["segment_region_voxels"] = {region.size.x, region.size.y, region.size.z};
+    }
     if (!base.operators.empty()) {
         const OperatorSpec& op = base.operators[0];
         const operators::LocalBox box = operators::deformedBounds(op.params, op.resolution);

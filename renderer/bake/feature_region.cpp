@@ -8,8 +8,8 @@
 
 namespace cutaway::bake {
 
-VoxelRegion regionCovering(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 gridLo,
-                           glm::dvec3 boxLo, glm::dvec3 boxHi, int margin) {
+VoxelRegion regionCovering(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 gridLo, glm::dvec3 boxLo,
+                           glm::dvec3 boxHi, int margin) {
     // Voxel centres sit at whole voxel coordinates.
     const glm::dvec3 lo = glm::floor((boxLo - gridLo) / spacing - 0.5) - double(margin);
     const glm::dvec3 hi = glm::ceil((boxHi - gridLo) / spacing - 0.5) + double(margin);
@@ -21,10 +21,10 @@ VoxelRegion regionCovering(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 gridL
 
 FeatureRegionBaker::FeatureRegionBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     const auto cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    m_setLayout = gpu::createSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
-              {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
-              {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
+    m_setLayout =
+        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
+                                   {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
+                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
     m_layout =
         gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::FeatureRegionParams), cs);
     auto module =
@@ -54,7 +54,7 @@ gpu::Image FeatureRegionBaker::bake(const gpu::Image& values, const gpu::Image& 
     params.size = region.size;
     params.dims = glm::ivec3(values.extent.width, values.extent.height, values.extent.depth);
     gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &params,
-                          sizeof params, glm::uvec3(4));
+                          sizeof params, glm::uvec3(8, 8, 4)); // one workgroup each
     return out;
 }
 

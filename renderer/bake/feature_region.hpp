@@ -29,8 +29,8 @@ struct VoxelRegion {
 /// `gridLo`, mm) that a trilinear sample anywhere in the world box [boxLo,
 /// boxHi] reads, with `margin` voxels more on every side; clamped to the
 /// grid, at least one voxel.
-VoxelRegion regionCovering(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 gridLo,
-                           glm::dvec3 boxLo, glm::dvec3 boxHi, int margin = 2);
+VoxelRegion regionCovering(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 gridLo, glm::dvec3 boxLo,
+                           glm::dvec3 boxHi, int margin = 2);
 
 class FeatureRegionBaker {
 public:

@@ -98,9 +98,15 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
         EXPECT_LE(rec["ms_min"].get<double>(), rec["ms_median"].get<double>());
         EXPECT_LE(rec["ms_median"].get<double>(), rec["ms_max"].get<double>());
         EXPECT_NEAR(rec["fps"].get<double>() * rec["ms_median"].get<double>(), 1000.0, 1e-6);
-        for (const char* bake : {"gradients_ms", "distance_field_ms", "segment_mask_ms",
-                                 "operator_map_ms", "value_spans_ms", "classify_ms"})
+        for (const char* bake :
+             {"gradients_ms", "distance_field_ms", "segment_mask_ms", "segment_region_ms",
+              "operator_map_ms", "value_spans_ms", "classify_ms"})
             EXPECT_TRUE(rec["bake_ms"][bake].is_number()) << bake;
+        // The segment row's region covers the operator's box: some voxels,
+        // none beyond the 24^3 grid.
+        const json& region = rec["bake_ms"]["segment_region_voxels"];
+        for (int a = 0; a < 3; ++a)
+            EXPECT_TRUE(region[a] >= 1 && region[a] <= 24) << region.dump();
         EXPECT_GT(rec["peak_rss_mib"].get<double>(), 0.0);
         // One render of the row in a process of its own holds less than the
         // whole run, and the largest row's is the dataset's.

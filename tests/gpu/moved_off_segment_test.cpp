@@ -23,6 +23,25 @@ using nlohmann::json;
 
 class MovedOffSegment : public GpuTest {};
 
+// The region holds every voxel a trilinear sample in the box reads, two more
+// on each side, and nothing beyond the grid.
+TEST(FeatureRegion, CoversTheBoxsSamplesWithinTheGrid) {
+    const glm::ivec3 dims(40, 30, 20);
+    const glm::dvec3 spacing(1.0, 2.0, 0.5), gridLo(-20.0, -30.0, -5.0);
+    // Voxel centres at gridLo + (i + 0.5) spacing: x 3.5 .. 7.2 mm -> voxel coordinates
+    // 23 .. 26.7, read from voxel 23 to 27; y -30 .. -29 -> -0.5 .. 0: voxel 0 (clamped);
+    // z 9.9 .. 30 -> 29.3 .. 69.5: beyond the last voxel, 19.
+    const bake::VoxelRegion r =
+        bake::regionCovering(dims, spacing, gridLo, {3.5, -30.0, 9.9}, {7.2, -29.0, 30.0});
+    EXPECT_EQ(r.lo, glm::ivec3(21, 0, 19));
+    EXPECT_EQ(r.lo + r.size - 1, glm::ivec3(29, 2, 19));
+    // A box wholly outside the grid still gives one voxel.
+    const bake::VoxelRegion out =
+        bake::regionCovering(dims, spacing, gridLo, {100.0, 100.0, 100.0}, {110.0, 110.0, 110.0});
+    EXPECT_EQ(out.size, glm::ivec3(1));
+    EXPECT_EQ(out.lo, dims - 1);
+}
+
 // The texture over a region that does not start at the grid's corner: r is
 // the segment mask as baked, g the moved value of the CPU twin, at every texel.
 TEST_F(MovedOffSegment, RegionTextureMatchesItsCpuTwin) {
@@ -84,8 +103,7 @@ TEST_F(MovedOffSegment, LiftedFlapShowsNoSkull) {
             {"volume", {{"phantom", "head"}, {"size", {64, 64, 64}}}},
             {"transfer", {{"points", skullOnly}}},
             {"camera", {{"orbit", {{"azimuth", 20}, {"elevation", 50}, {"distance", 260}}}}},
-            {"render",
-             {{"size", {96, 96}}, {"classification", "post"}, {"method", method}}},
+            {"render", {{"size", {96, 96}}, {"classification", "post"}, {"method", method}}},
             {"operators",
              json::array({{
                  {"type", "peeler"},
