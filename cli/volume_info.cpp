@@ -22,6 +22,21 @@ std::string describeVolume(const Volume& volume, const std::string& name) {
     add("  spacing  %g x %g x %g mm\n", volume.spacing.x, volume.spacing.y, volume.spacing.z);
     const glm::dvec3 e = volume.extent();
     add("  extent   %g x %g x %g mm\n", e.x, e.y, e.z);
+    if (volume.hasPhysicalPlacement()) {
+        // Where `cutaway export` places its grid; the render uses index axes.
+        const char* space = volume.space == Space::LPS    ? "LPS"
+                            : volume.space == Space::None ? "none given"
+                                                          : "not anatomical";
+        add("  space    %s\n", space);
+        add("  origin   (%g, %g, %g) mm, the centre of voxel (0, 0, 0)\n", volume.origin.x,
+            volume.origin.y, volume.origin.z);
+        for (int a = 0; a < 3; ++a) {
+            glm::dvec3 d = volume.direction[a];
+            for (int c = 0; c < 3; ++c) // single-precision noise (1e-9) and -0 as 0
+                d[c] = std::abs(d[c]) < 1e-6 ? 0.0 : d[c];
+            add("  axis %c   along (%.4g, %.4g, %.4g)\n", "ijk"[a], d.x, d.y, d.z);
+        }
+    }
     if (volume.slope != 1.0 || volume.inter != 0.0)
         add("  scaling  value = raw * %g + %g\n", volume.slope, volume.inter);
     add("  values   [%g, %g]\n", range.min, range.max);

@@ -68,11 +68,14 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
     result.volume = deform(placed, empty, operators::Sampling::Trilinear).volume;
     if (withLabels) {
         // On the scan's grid exactly (loadSceneLabels allows spacings 0.1 %
-        // apart, and the render ignores origins), so that every step's grid
-        // and feature field are the scan's and the two files overlay.
+        // apart, and the render ignores origins and directions), so that every
+        // step's grid and feature field are the scan's and the two files
+        // overlay: the labels take the scan's geometry, whatever their file says.
         operators::PlacedVolume labelled{*labels, placed.worldLo};
         labelled.volume.spacing = placed.volume.spacing;
         labelled.volume.origin = placed.volume.origin;
+        labelled.volume.direction = placed.volume.direction;
+        labelled.volume.space = placed.volume.space;
         result.labels = deform(labelled, 0.0f, operators::Sampling::Nearest).volume;
     }
     return result;

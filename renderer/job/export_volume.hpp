@@ -22,7 +22,10 @@ namespace cutaway::job {
 std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
                                    const OperatorSpec& op);
 
-/// What `cutaway export` writes for one frame.
+/// What `cutaway export` writes for one frame. Both volumes have the scan's
+/// spacing, directions and space, and an origin that puts every voxel of the
+/// scan's grid where the scan has it (physicalPosition): the grid grows by
+/// whole voxels along the scan's index axes to hold what operators move out.
 struct Exported {
     Volume volume;                ///< the scan deformed, float32
     std::optional<Volume> labels; ///< the label volume deformed alike, when asked for

@@ -137,7 +137,11 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
     const bool nearest = sampling == Sampling::Nearest;
     Volume out =
         Volume::allocate(glm::ivec3(hiVox - loVox), nearest ? volume.type : VoxelType::F32, s);
-    out.origin = volume.origin + loVox * s;
+    // The grid grew along the index axes, which run along the scan's
+    // directions in its space: untouched voxels keep their physical places.
+    out.origin = volume.origin + volume.direction * (loVox * s);
+    out.direction = volume.direction;
+    out.space = volume.space;
     if (nearest) {
         out.slope = volume.slope;
         out.inter = volume.inter;

@@ -46,10 +46,10 @@ enum class Sampling {
 /// with its spacing that covers it and every operator's material (so a lifted
 /// flap is kept). Voxels in a cut, or with no pre-image in the volume, get
 /// `emptyValue` (Nearest: the stored number 0, a label volume's background).
-/// Untouched voxels keep their values and positions (the result's `origin`
-/// moves with the grid). `fieldFor` makes the feature fields of the operators
-/// that are not axis-aligned, on `in`'s grid; without it every operator is
-/// evaluated as axis-aligned.
+/// Untouched voxels keep their values and physical positions (the result's
+/// `origin` moves with the grid along `in`'s directions, which it keeps). `fieldFor` makes the
+/// feature fields of the operators that are not axis-aligned, on `in`'s grid; without it every
+/// operator is evaluated as axis-aligned.
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
                               float emptyValue, const FeatureFieldMaker& fieldFor = {},
                               Sampling sampling = Sampling::Trilinear);

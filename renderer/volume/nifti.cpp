@@ -1,4 +1,5 @@
 // NIfTI-1 single-file reader (.nii, .nii.gz; magic "n+1"), either byte order.
+// Geometry from the sform, else the qform, converted from RAS to LPS (volume.hpp).
 // https://nifti.nimh.nih.gov/nifti-1/documentation/nifti1fields
 #include "core/error.hpp"
 #include "volume/byte_order.hpp"
@@ -8,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 namespace cutaway {
 
@@ -99,6 +101,64 @@ VoxelType niftiType(std::int16_t code, const std::string& ctx) {
                      "float64");
 }
 
+/// Where the voxel grid lies in NIfTI's RAS space: unit direction columns
+/// (index axis a is column a) and the position of voxel (0,0,0)'s centre.
+struct Placement {
+    glm::dmat3 direction{1.0};
+    glm::dvec3 origin{0.0};
+};
+
+bool finite(glm::dvec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// The columns of `m` normalised, with `origin`; nothing when one is not
+/// finite or has no length.
+std::optional<Placement> normalised(glm::dmat3 m, glm::dvec3 origin) {
+    if (!finite(origin)) return std::nullopt;
+    for (int a = 0; a < 3; ++a) {
+        const double length = glm::length(m[a]);
+        if (!finite(m[a]) || !std::isfinite(length) || length <= 0.0) return std::nullopt;
+        m[a] /= length;
+    }
+    return Placement{m, origin};
+}
+
+/// Method 3: the affine of srow_x, srow_y, srow_z.
+std::optional<Placement> sformPlacement(const HeaderBytes& h) {
+    glm::dmat3 m(1.0);
+    for (std::size_t row = 0; row < 3; ++row)
+        for (std::size_t col = 0; col < 3; ++col)
+            m[static_cast<int>(col)][static_cast<int>(row)] = h.f32(280 + 16 * row + 4 * col);
+    return normalised(m, glm::dvec3(h.f32(292), h.f32(308), h.f32(324)));
+}
+
+/// Method 2: the rotation of the quaternion (b, c, d), its third column
+/// negated when qfac (pixdim[0]) is negative, and qoffset.
+std::optional<Placement> qformPlacement(const HeaderBytes& h) {
+    double b = h.f32(256), c = h.f32(260), d = h.f32(264);
+    if (!std::isfinite(b) || !std::isfinite(c) || !std::isfinite(d)) return std::nullopt;
+    double a = 1.0 - (b * b + c * c + d * d);
+    if (a < 1.0e-7) {
+        // Not quite a unit quaternion: a 180 degree rotation (as nifti1_io does).
+        const double norm = std::sqrt(b * b + c * c + d * d);
+        if (norm == 0.0) return std::nullopt;
+        b /= norm;
+        c /= norm;
+        d /= norm;
+        a = 0.0;
+    } else {
+        a = std::sqrt(a);
+    }
+    // glm: m[column][row].
+    glm::dmat3 r;
+    r[0] = {a * a + b * b - c * c - d * d, 2 * (b * c + a * d), 2 * (b * d - a * c)};
+    r[1] = {2 * (b * c - a * d), a * a + c * c - b * b - d * d, 2 * (c * d + a * b)};
+    r[2] = {2 * (b * d + a * c), 2 * (c * d - a * b), a * a + d * d - c * c - b * b};
+    if (h.f32(76) < 0.0f) r[2] = -r[2];
+    return normalised(r, glm::dvec3(h.f32(268), h.f32(272), h.f32(276)));
+}
+
 struct Parsed {
     Volume volume;            ///< everything but the data
     std::size_t bytes = 0;    ///< voxel data size
@@ -186,11 +246,17 @@ Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
         v.slope = slope;
         v.inter = std::isfinite(inter) ? inter : 0.0;
     }
-    // Origin: the sform translation if set, else the qform's (informational).
-    if (h.i16(254) > 0) {
-        v.origin = glm::dvec3(h.f32(280 + 12), h.f32(296 + 12), h.f32(312 + 12));
-    } else if (h.i16(252) > 0) {
-        v.origin = glm::dvec3(h.f32(268), h.f32(272), h.f32(276));
+    // Orientation: the sform if set, else the qform (NIfTI's methods 3 and 2);
+    // neither (or one that is not finite or has a zero axis): none.
+    std::optional<Placement> placement;
+    if (h.i16(254) > 0) placement = sformPlacement(h);
+    if (!placement && h.i16(252) > 0) placement = qformPlacement(h);
+    if (placement) {
+        // NIfTI's space is RAS; LPS negates x and y.
+        const glm::dmat3 toLps(glm::dvec3(-1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1));
+        v.direction = toLps * placement->direction;
+        v.origin = toLps * placement->origin;
+        v.space = Space::LPS;
     }
     return p;
 }

@@ -1,6 +1,8 @@
 // NRRD reader (http://teem.sourceforge.net/nrrd/format.html), NRRD0001..NRRD0005:
 // attached (.nrrd) and detached (.nhdr + data file) headers, raw and gzip
 // encodings, either byte order, 3D grids (or 4D with a first axis of size 1).
+// Geometry from `space` (or `space dimension`), `space directions` and `space
+// origin`, anatomical spaces converted to LPS (volume.hpp); else `spacings`.
 #include "core/error.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/gzip.hpp"
@@ -37,6 +39,105 @@ const std::string& required(const std::optional<std::string>& field, const char*
                             const std::string& ctx) {
     if (!field) throw InputError(ctx + ": missing required field '" + name + "'");
     return *field;
+}
+
+/// What the `space` / `space dimension` fields say: the space cutaway keeps
+/// the geometry in, how many components the file's vectors have, and the
+/// factors that take its first three components to LPS.
+struct NrrdSpace {
+    Space space = Space::NonAnatomical;
+    std::size_t dimension = 0; ///< 0: not stated (taken from the vectors, which must have 3)
+    glm::dvec3 toLps{1.0};
+};
+
+NrrdSpace parseSpace(const detail::NrrdFields& f, const std::string& ctx) {
+    struct Named {
+        const char* name;
+        Space space;
+        std::size_t dimension;
+        glm::dvec3 toLps;
+    };
+    // The spec's spaces and the spellings teem accepts for them (any case).
+    static const Named kSpaces[] = {
+        {"right-anterior-superior", Space::LPS, 3, {-1, -1, 1}},
+        {"right anterior superior", Space::LPS, 3, {-1, -1, 1}},
+        {"rightanteriorsuperior", Space::LPS, 3, {-1, -1, 1}},
+        {"ras", Space::LPS, 3, {-1, -1, 1}},
+        {"left-anterior-superior", Space::LPS, 3, {1, -1, 1}},
+        {"left anterior superior", Space::LPS, 3, {1, -1, 1}},
+        {"leftanteriorsuperior", Space::LPS, 3, {1, -1, 1}},
+        {"las", Space::LPS, 3, {1, -1, 1}},
+        {"left-posterior-superior", Space::LPS, 3, {1, 1, 1}},
+        {"left posterior superior", Space::LPS, 3, {1, 1, 1}},
+        {"leftposteriorsuperior", Space::LPS, 3, {1, 1, 1}},
+        {"lps", Space::LPS, 3, {1, 1, 1}},
+        {"right-anterior-superior-time", Space::LPS, 4, {-1, -1, 1}},
+        {"right anterior superior time", Space::LPS, 4, {-1, -1, 1}},
+        {"rightanteriorsuperiortime", Space::LPS, 4, {-1, -1, 1}},
+        {"rast", Space::LPS, 4, {-1, -1, 1}},
+        {"left-anterior-superior-time", Space::LPS, 4, {1, -1, 1}},
+        {"left anterior superior time", Space::LPS, 4, {1, -1, 1}},
+        {"leftanteriorsuperiortime", Space::LPS, 4, {1, -1, 1}},
+        {"last", Space::LPS, 4, {1, -1, 1}},
+        {"left-posterior-superior-time", Space::LPS, 4, {1, 1, 1}},
+        {"left posterior superior time", Space::LPS, 4, {1, 1, 1}},
+        {"leftposteriorsuperiortime", Space::LPS, 4, {1, 1, 1}},
+        {"lpst", Space::LPS, 4, {1, 1, 1}},
+        {"scanner-xyz", Space::NonAnatomical, 3, {1, 1, 1}},
+        {"scanner-xyz-time", Space::NonAnatomical, 4, {1, 1, 1}},
+        {"scanner-xyzt", Space::NonAnatomical, 4, {1, 1, 1}},
+        {"3d-right-handed", Space::NonAnatomical, 3, {1, 1, 1}},
+        {"3d right handed", Space::NonAnatomical, 3, {1, 1, 1}},
+        {"3drighthanded", Space::NonAnatomical, 3, {1, 1, 1}},
+        {"3d-left-handed", Space::NonAnatomical, 3, {1, 1, 1}},
+        {"3d left handed", Space::NonAnatomical, 3, {1, 1, 1}},
+        {"3dlefthanded", Space::NonAnatomical, 3, {1, 1, 1}},
+        {"3d-right-handed-time", Space::NonAnatomical, 4, {1, 1, 1}},
+        {"3d right handed time", Space::NonAnatomical, 4, {1, 1, 1}},
+        {"3drighthandedtime", Space::NonAnatomical, 4, {1, 1, 1}},
+        {"3d-left-handed-time", Space::NonAnatomical, 4, {1, 1, 1}},
+        {"3d left handed time", Space::NonAnatomical, 4, {1, 1, 1}},
+        {"3dlefthandedtime", Space::NonAnatomical, 4, {1, 1, 1}},
+    };
+    NrrdSpace out;
+    if (f.space) {
+        const std::string name = toLower(trim(*f.space));
+        const Named* found = nullptr;
+        for (const Named& n : kSpaces)
+            if (name == n.name) found = &n;
+        if (!found) {
+            throw InputError(ctx + ": unknown space '" + std::string(trim(*f.space)) +
+                             "' (expected one of the NRRD spaces, e.g. left-posterior-superior, "
+                             "right-anterior-superior, scanner-xyz, 3D-right-handed)");
+        }
+        out = {found->space, found->dimension, found->toLps};
+    }
+    if (f.spaceDimension) {
+        const std::int64_t n = parseIntField(*f.spaceDimension, "space dimension", ctx);
+        if (f.space && n != static_cast<std::int64_t>(out.dimension)) {
+            throw InputError(ctx + ": 'space dimension' " + std::to_string(n) +
+                             " contradicts space '" + std::string(trim(*f.space)) + "'");
+        }
+        if (n != 3 && !f.space) {
+            throw InputError(ctx + ": space dimension " + std::to_string(n) +
+                             " is not supported (cutaway reads volumes in a 3D space)");
+        }
+        out.dimension = static_cast<std::size_t>(n);
+    }
+    return out;
+}
+
+/// The first three components of a `space directions` or `space origin`
+/// vector, in LPS for an anatomical space. Its length must be the space's
+/// dimension (3 when the header states none).
+glm::dvec3 spatialPart(const std::vector<double>& v, const NrrdSpace& space, const char* field,
+                       const std::string& ctx) {
+    const std::size_t want = space.dimension ? space.dimension : 3;
+    if (v.size() != want) {
+        throw InputError(ctx + ": a '" + field + "' vector has " + std::to_string(v.size()) +
+                         " components but the space has " + std::to_string(want) + " dimensions");
+    }
+    return glm::dvec3(v[0], v[1], v[2]) * space.toLps;
 }
 
 /// Reads a NRRD whose header starts at the beginning of `in` (`headerFileSize`
@@ -82,6 +183,7 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
     volume.type = type;
     // Spacing: the length of each space direction, else `spacings`, else 1 mm.
     if (f.directions) {
+        const NrrdSpace space = parseSpace(f, ctx);
         const auto vectors = parseNrrdVectors(*f.directions, "space directions", ctx);
         if (static_cast<std::int64_t>(vectors.size()) != dimension) {
             throw InputError(ctx + ": 'space directions' has " + std::to_string(vectors.size()) +
@@ -90,34 +192,49 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
         for (int a = 0; a < 3; ++a) {
             const auto& v = vectors[first + static_cast<std::size_t>(a)];
             if (!v) throw InputError(ctx + ": 'space directions' is none for a spatial axis");
-            double squared = 0.0;
-            for (double c : *v)
-                squared += c * c;
-            volume.spacing[a] = std::sqrt(squared);
+            const glm::dvec3 vector = spatialPart(*v, space, "space directions", ctx);
+            volume.spacing[a] = glm::length(vector);
             detail::checkSpacing(volume.spacing[a], a, ctx);
+            volume.direction[a] = vector / volume.spacing[a];
         }
-    } else if (f.spacings) {
-        const auto words = splitWords(*f.spacings);
-        if (static_cast<std::int64_t>(words.size()) != dimension) {
-            throw InputError(ctx + ": 'spacings' has " + std::to_string(words.size()) +
-                             " entries but dimension is " + std::to_string(dimension));
-        }
-        for (int a = 0; a < 3; ++a) {
-            const auto word = words[first + static_cast<std::size_t>(a)];
-            if (!detail::parseDouble(word, volume.spacing[a])) {
-                throw InputError(ctx + ": 'spacings' entry '" + std::string(word) +
-                                 "' is not a number");
+        volume.space = space.space;
+        if (f.origin) {
+            const auto vectors = parseNrrdVectors(*f.origin, "space origin", ctx);
+            if (vectors.size() != 1 || !vectors[0]) {
+                throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
             }
-            detail::checkSpacing(volume.spacing[a], a, ctx);
+            volume.origin = spatialPart(*vectors[0], space, "space origin", ctx);
+            if (!std::isfinite(volume.origin.x) || !std::isfinite(volume.origin.y) ||
+                !std::isfinite(volume.origin.z)) {
+                throw InputError(ctx + ": 'space origin' is not finite");
+            }
         }
-    }
-    if (f.origin) {
-        const auto vectors = parseNrrdVectors(*f.origin, "space origin", ctx);
-        if (vectors.size() != 1 || !vectors[0]) {
-            throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
+    } else {
+        if (f.spacings) {
+            const auto words = splitWords(*f.spacings);
+            if (static_cast<std::int64_t>(words.size()) != dimension) {
+                throw InputError(ctx + ": 'spacings' has " + std::to_string(words.size()) +
+                                 " entries but dimension is " + std::to_string(dimension));
+            }
+            for (int a = 0; a < 3; ++a) {
+                const auto word = words[first + static_cast<std::size_t>(a)];
+                if (!detail::parseDouble(word, volume.spacing[a])) {
+                    throw InputError(ctx + ": 'spacings' entry '" + std::string(word) +
+                                     "' is not a number");
+                }
+                detail::checkSpacing(volume.spacing[a], a, ctx);
+            }
         }
-        for (std::size_t a = 0; a < std::min<std::size_t>(3, vectors[0]->size()); ++a) {
-            volume.origin[static_cast<int>(a)] = (*vectors[0])[a];
+        // Without space directions the axes have no orientation in a space:
+        // an origin is kept as written, for reference.
+        if (f.origin) {
+            const auto vectors = parseNrrdVectors(*f.origin, "space origin", ctx);
+            if (vectors.size() != 1 || !vectors[0]) {
+                throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
+            }
+            for (std::size_t a = 0; a < std::min<std::size_t>(3, vectors[0]->size()); ++a) {
+                volume.origin[static_cast<int>(a)] = (*vectors[0])[a];
+            }
         }
     }
 

@@ -189,6 +189,10 @@ NrrdFields readNrrdHeader(std::istream& in, const std::string& ctx, bool& endedB
             f.encoding = value;
         else if (name == "spacings")
             f.spacings = value;
+        else if (name == "space")
+            f.space = value;
+        else if (name == "space dimension")
+            f.spaceDimension = value;
         else if (name == "space directions")
             f.directions = value;
         else if (name == "space origin")
@@ -201,7 +205,7 @@ NrrdFields readNrrdHeader(std::istream& in, const std::string& ctx, bool& endedB
             f.byteSkip = value;
         else if (name == "line skip" || name == "lineskip")
             f.lineSkip = value;
-        // content, kinds, space, centerings, labels, units, ...: descriptive only.
+        // content, kinds, centerings, labels, units, space units, ...: descriptive only.
     }
     return f;
 }

@@ -13,8 +13,8 @@ namespace cutaway::detail {
 
 /// The raw text of the fields cutaway uses; unknown fields are skipped.
 struct NrrdFields {
-    std::optional<std::string> type, dimension, sizes, endian, encoding, spacings, directions,
-        origin, dataFile, byteSkip, lineSkip, slope, inter;
+    std::optional<std::string> type, dimension, sizes, endian, encoding, spacings, space,
+        spaceDimension, directions, origin, dataFile, byteSkip, lineSkip, slope, inter;
 };
 
 /// Reads the magic line and the fields up to the first blank line (or the end

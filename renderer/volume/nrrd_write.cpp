@@ -10,6 +10,7 @@
 #include "volume/volume.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -39,16 +40,23 @@ std::string header(const Volume& volume, bool gzip) {
         << "type: " << nrrdTypeName(volume.type) << "\n"
         << "dimension: 3\n"
         << "sizes: " << volume.dims.x << ' ' << volume.dims.y << ' ' << volume.dims.z << "\n";
-    const bool hasOrigin = volume.origin != glm::dvec3(0.0);
-    if (hasOrigin) {
+    if (volume.hasPhysicalPlacement()) {
         // The spec allows `space origin` only with a space; per-axis spacing then
-        // goes in `space directions` (teem rejects `spacings` next to a space).
-        out << "space dimension: 3\n"
-            << "space directions: (" << formatDouble(volume.spacing.x) << ",0,0) (0,"
-            << formatDouble(volume.spacing.y) << ",0) (0,0," << formatDouble(volume.spacing.z)
-            << ")\n"
-            << "space origin: (" << formatDouble(volume.origin.x) << ','
-            << formatDouble(volume.origin.y) << ',' << formatDouble(volume.origin.z) << ")\n";
+        // goes in `space directions` (teem rejects `spacings` next to a space):
+        // the direction of each index axis scaled by its spacing.
+        const auto vector = [](glm::dvec3 v) {
+            v += 0.0; // -0 as 0
+            return "(" + formatDouble(v.x) + "," + formatDouble(v.y) + "," + formatDouble(v.z) +
+                   ")";
+        };
+        if (volume.space == Space::LPS)
+            out << "space: left-posterior-superior\n";
+        else
+            out << "space dimension: 3\n";
+        out << "space directions: " << vector(volume.direction[0] * volume.spacing.x) << ' '
+            << vector(volume.direction[1] * volume.spacing.y) << ' '
+            << vector(volume.direction[2] * volume.spacing.z) << "\n"
+            << "space origin: " << vector(volume.origin) << "\n";
     } else {
         out << "spacings: " << formatDouble(volume.spacing.x) << ' '
             << formatDouble(volume.spacing.y) << ' ' << formatDouble(volume.spacing.z) << "\n";
@@ -74,8 +82,17 @@ void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzi
         throw InputError(ctx + ": volume has " + std::to_string(volume.data.size()) +
                          " bytes of data but its dims and type need " + std::to_string(bytes));
     }
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) {
         detail::checkSpacing(volume.spacing[a], a, ctx);
+        const double length = glm::length(volume.direction[a]);
+        if (!std::isfinite(length) || std::abs(length - 1.0) > 1e-6) {
+            throw InputError(ctx + ": the direction of axis " + std::to_string(a) +
+                             " is not a unit vector");
+        }
+    }
+    for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(volume.origin[a])) throw InputError(ctx + ": the origin is not finite");
+    }
 
     writeAtomically(path, [&](const std::filesystem::path& temporary) {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);

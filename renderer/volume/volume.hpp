@@ -8,8 +8,13 @@
 //
 // Geometry: voxel (i, j, k) covers the cell [i, i+1] x [j, j+1] x [k, k+1] in
 // index space; its centre is at (i + 0.5, ...). Physical extent in millimetres
-// is dims * spacing. Direction cosines and origins from the file are kept for
-// reference but cutaway renders in the axis frame of the index grid.
+// is dims * spacing. cutaway renders and deforms in the axis frame of the index
+// grid (x along i, ...). Where the file is in the patient's (or scanner's)
+// space is kept for writing it back: the centre of voxel (i, j, k) lies at
+// origin + direction * (spacing * (i, j, k)) in `space` (physicalPosition).
+// Anatomical spaces are all stored as LPS, the DICOM and ITK convention: a
+// NIfTI's RAS sform/qform and a NRRD's RAS or LAS space are converted on
+// reading.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -30,10 +35,23 @@ std::string_view voxelTypeName(VoxelType type);
 /// Parses a canonical name (as above); throws InputError naming `context` otherwise.
 VoxelType parseVoxelType(std::string_view name, std::string_view context);
 
+/// The space a volume's origin and direction are expressed in.
+enum class Space {
+    None,         ///< the file said nothing of one (phantoms, raw files, NRRD with
+                  ///< `spacings` only, NIfTI with neither qform nor sform)
+    LPS,          ///< anatomical: x to the patient's left, y posterior, z superior
+    NonAnatomical ///< a 3D space with no anatomical meaning (NRRD scanner-xyz,
+                  ///< 3D-right-handed, 3D-left-handed, `space dimension: 3`)
+};
+
 struct Volume {
     glm::ivec3 dims{0};      ///< voxels along x, y, z; each >= 1
     glm::dvec3 spacing{1.0}; ///< millimetres between voxel centres, each > 0 and finite
-    glm::dvec3 origin{0.0};  ///< physical position of voxel (0,0,0), informational
+    glm::dvec3 origin{0.0};  ///< position of voxel (0,0,0)'s centre in `space`
+    /// Column a: the unit vector along which index axis a runs in `space`
+    /// (direction cosines; identity when the file gave none).
+    glm::dmat3 direction{1.0};
+    Space space = Space::None;
     VoxelType type = VoxelType::U8;
     double slope = 1.0; ///< value = raw * slope + inter
     double inter = 0.0;
@@ -45,6 +63,16 @@ struct Volume {
     double value(std::size_t i) const { return raw(i) * slope + inter; }
     double value(int x, int y, int z) const { return value(index(x, y, z)); }
     glm::dvec3 extent() const { return glm::dvec3(dims) * spacing; } ///< millimetres
+    /// Where the centre of voxel `voxel` (fractional indices allowed) lies in
+    /// `space`: origin + direction * (spacing * voxel).
+    glm::dvec3 physicalPosition(glm::dvec3 voxel) const {
+        return origin + direction * (spacing * voxel);
+    }
+    /// Whether the volume has a place in a space: anything a NRRD writes as
+    /// `space`/`space dimension`, `space directions` and `space origin`.
+    bool hasPhysicalPlacement() const {
+        return space != Space::None || origin != glm::dvec3(0.0) || direction != glm::dmat3(1.0);
+    }
 
     /// Allocates zeroed storage for the given shape and type.
     static Volume allocate(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing = glm::dvec3(1.0));
@@ -79,7 +107,10 @@ Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name);
 Volume readNiftiBytes(std::span<const std::byte> bytes, const std::string& name);
 
 /// Writes an attached-header NRRD (raw or gzip encoding), native voxel type,
-/// little endian, with spacings. Written to a temporary name, then renamed.
+/// little endian. A volume with a place in a space (hasPhysicalPlacement) gets
+/// `space: left-posterior-superior` (Space::LPS) or `space dimension: 3`,
+/// `space directions` (direction columns times spacing) and `space origin`;
+/// any other gets `spacings`. Written to a temporary name, then renamed.
 void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzip = true);
 
 } // namespace cutaway

@@ -6,8 +6,10 @@
 #include "volume/phantom.hpp"
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <gtest/gtest.h>
+#include <optional>
 
 namespace cutaway::test {
 namespace {
@@ -17,6 +19,87 @@ Scene withOperators(const std::string& operators) {
         "operators": )" + operators + "}"),
                       "/nonexistent", "export test");
 }
+
+// An oblique LPS orientation: the index axes rotated by 50 degrees about x,
+// then by 30 about z, with j flipped; so that no axis is a space axis.
+glm::dmat3 obliqueDirections() {
+    const double cx = std::cos(glm::radians(50.0)), sx = std::sin(glm::radians(50.0));
+    const double cz = std::cos(glm::radians(30.0)), sz = std::sin(glm::radians(30.0));
+    const glm::dmat3 rx(glm::dvec3(1, 0, 0), glm::dvec3(0, cx, sx), glm::dvec3(0, -sx, cx));
+    const glm::dmat3 rz(glm::dvec3(cz, sz, 0), glm::dvec3(-sz, cz, 0), glm::dvec3(0, 0, 1));
+    const glm::dmat3 flipJ(glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1));
+    return rz * rx * flipJ;
+}
+
+// The orange phantom with anisotropic voxels, placed obliquely in LPS.
+Phantom orientedOrange() {
+    Phantom p = makePhantom("orange", {40, 40, 40}, {1.0, 1.25, 0.8});
+    p.values.direction = obliqueDirections();
+    p.values.origin = {-31.5, 87.25, -12.0};
+    p.values.space = Space::LPS;
+    return p;
+}
+
+// Where the centre of voxel `voxel` lies, from a volume's header fields:
+// origin + D * (spacing * index).
+glm::dvec3 physical(const Volume& v, glm::ivec3 voxel) {
+    return v.origin + v.direction * (v.spacing * glm::dvec3(voxel));
+}
+
+// Checks that the centre of every voxel of `scan` is the centre of a voxel of
+// `out`, the same shift of indices for all, and that voxels from slice
+// `untouchedFromZ` of the scan on keep their values there. Returns the shift
+// (out's index of the scan's voxel (0,0,0)).
+glm::ivec3 expectScanVoxelsInPlace(const Volume& scan, const Volume& out, int untouchedFromZ) {
+    EXPECT_EQ(out.space, scan.space);
+    for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(out.spacing[a], scan.spacing[a], 1e-12) << a;
+    const glm::dmat3 inverse = glm::inverse(out.direction);
+    std::optional<glm::ivec3> shift;
+    int compared = 0;
+    for (int z = 0; z < scan.dims.z; ++z)
+        for (int y = 0; y < scan.dims.y; ++y)
+            for (int x = 0; x < scan.dims.x; ++x) {
+                const glm::ivec3 voxel(x, y, z);
+                const glm::dvec3 p = physical(scan, voxel);
+                const glm::dvec3 e = (inverse * (p - out.origin)) / out.spacing;
+                const glm::ivec3 nearest(glm::round(e));
+                if (glm::distance(e, glm::dvec3(nearest)) > 1e-6) {
+                    ADD_FAILURE() << "scan voxel " << x << ' ' << y << ' ' << z
+                                  << " is not on the export's grid: index " << e.x << ' ' << e.y
+                                  << ' ' << e.z;
+                    return shift.value_or(glm::ivec3(0));
+                }
+                if (!shift) shift = nearest - voxel;
+                if (nearest - voxel != *shift || glm::any(glm::lessThan(nearest, glm::ivec3(0))) ||
+                    glm::any(glm::greaterThanEqual(nearest, out.dims))) {
+                    ADD_FAILURE() << "scan voxel " << x << ' ' << y << ' ' << z
+                                  << " moved to export voxel " << nearest.x << ' ' << nearest.y
+                                  << ' ' << nearest.z;
+                    return *shift;
+                }
+                if (z >= untouchedFromZ) {
+                    ++compared;
+                    if (std::abs(out.value(nearest.x, nearest.y, nearest.z) - scan.value(x, y, z)) >
+                        1e-3) {
+                        ADD_FAILURE() << "scan voxel " << x << ' ' << y << ' ' << z << ": "
+                                      << scan.value(x, y, z) << ", in the export "
+                                      << out.value(nearest.x, nearest.y, nearest.z);
+                        return *shift;
+                    }
+                }
+            }
+    EXPECT_GT(compared, 0);
+    return shift.value_or(glm::ivec3(0));
+}
+
+// A peeler on the scan's bottom (index -z face, the box rotated upside down)
+// and reaching out past its -x face: the flap lifts below the scan, so the
+// grid grows at its low end along i and k, and its voxel (0,0,0) moves off
+// the scan's. The scan's extent is 40 x 50 x 32 mm.
+const char* kGrowingPeeler = R"([ { "type": "peeler",
+    "placement": { "translate": [-8, 0, -8], "rotate": [180, 0, 0], "scale": [36, 30, 16] },
+    "params": { "hinge": -6, "thickness": 5, "radius": 3, "angle": 160 } } ])";
 
 } // namespace
 
@@ -144,6 +227,74 @@ TEST_F(CliTest, ExportWritesTheLabelsDeformedAlike) {
     EXPECT_NE(b.output.find("has no /labels"), std::string::npos) << b.output;
     EXPECT_FALSE(std::filesystem::exists(m_dir / "bv.nrrd"));
     EXPECT_FALSE(std::filesystem::exists(m_dir / "bl.nrrd"));
+}
+
+// Without operators, the export of an obliquely oriented scan is the scan:
+// every voxel centre at the same physical point, with the same value.
+TEST_F(CliTest, ExportWithoutOperatorsKeepsTheScanGeometry) {
+    const Phantom orange = orientedOrange();
+    writeNrrd(m_dir / "scan.nrrd", orange.values);
+    const Scene scene =
+        parseScene(nlohmann::json::parse(R"({"version": 1, "volume": {"file": "scan.nrrd"}})"),
+                   m_dir, "export test");
+    const Volume out = job::exportVolume(scene).volume;
+    EXPECT_EQ(out.dims, orange.values.dims);
+    EXPECT_EQ(out.space, Space::LPS);
+    EXPECT_EQ(expectScanVoxelsInPlace(orange.values, out, 0), glm::ivec3(0));
+
+    // Through the command and the file it writes.
+    const auto file = write("s.json", R"({"version": 1, "volume": {"file": "scan.nrrd"}})");
+    CommandResult r = runCutaway("export " + file.string() + " -o " + (m_dir / "o.nrrd").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const Volume written = readVolume(m_dir / "o.nrrd");
+    EXPECT_EQ(written.dims, orange.values.dims);
+    EXPECT_EQ(expectScanVoxelsInPlace(orange.values, written, 0), glm::ivec3(0));
+}
+
+// With the grid grown at its low end, the export's origin is the scan's moved
+// along the scan's directions (not along the space's axes): every voxel of
+// the scan is still a voxel of the export at the same physical point, and
+// away from the peeler (the scan's upper half) keeps its value. The labels
+// (a file with no orientation of its own) get the same geometry.
+TEST_F(CliTest, ExportOfAGrownGridKeepsTheScanGeometry) {
+    const Phantom orange = orientedOrange();
+    writeNrrd(m_dir / "scan.nrrd", orange.values);
+    writeNrrd(m_dir / "labels.nrrd", orange.labels); // no origin, no directions
+    const std::string text = std::string(R"({"version": 1, "volume": {"file": "scan.nrrd"},
+        "labels": {"file": "labels.nrrd"}, "operators": )") +
+                             kGrowingPeeler + "}";
+    const Scene scene = parseScene(nlohmann::json::parse(text), m_dir, "export test");
+    const job::Exported exported = job::exportVolume(scene, true);
+    const Volume& out = exported.volume;
+    EXPECT_GT(out.dims.x, orange.values.dims.x);
+    EXPECT_GT(out.dims.z, orange.values.dims.z);
+    // Slices from 22 on lie above world z = 1.6 mm, clear of the peeler's box
+    // (z in [-16, 0]) and of its flap (below the scan).
+    const glm::ivec3 shift = expectScanVoxelsInPlace(orange.values, out, 22);
+    EXPECT_GT(shift.x, 0) << "the grid grew at -i";
+    EXPECT_GT(shift.z, 0) << "the grid grew at -k";
+    EXPECT_EQ(shift.y, 0);
+    ASSERT_TRUE(exported.labels);
+    const Volume& labels = *exported.labels;
+    EXPECT_EQ(labels.dims, out.dims);
+    EXPECT_EQ(labels.space, Space::LPS);
+    EXPECT_EQ(labels.origin, out.origin);
+    EXPECT_EQ(labels.direction, out.direction);
+    EXPECT_EQ(labels.spacing, out.spacing);
+
+    // The files `cutaway export` writes, read back.
+    const auto file = write("g.json", text);
+    const std::string v = (m_dir / "v.nrrd").string(), l = (m_dir / "l.nrrd").string();
+    CommandResult r = runCutaway("export " + file.string() + " -o " + v + " --labels-output " + l);
+    ASSERT_EQ(r.code, 0) << r.output;
+    const Volume writtenValues = readVolume(v);
+    const Volume writtenLabels = readVolume(l);
+    EXPECT_EQ(expectScanVoxelsInPlace(orange.values, writtenValues, 22), shift);
+    EXPECT_EQ(writtenLabels.space, Space::LPS);
+    EXPECT_EQ(writtenLabels.origin, writtenValues.origin);
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+            EXPECT_NEAR(writtenLabels.direction[a][b], obliqueDirections()[a][b], 1e-12);
 }
 
 // An aligned operator's segment with no voxel is bad input, as in a render:

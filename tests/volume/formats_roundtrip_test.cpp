@@ -3,6 +3,7 @@
 #include "volume_test_util.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace cutaway::test {
@@ -147,6 +148,9 @@ TEST_F(VolumeFormats, NrrdBigEndianWithSpaceDirections) {
     const Volume got = readVolume(path("big.nrrd"));
     expectSame(got, v); // spacing is the length of each direction vector
     EXPECT_EQ(got.origin, glm::dvec3(10, 20, 30));
+    EXPECT_EQ(got.space, Space::LPS);
+    EXPECT_EQ(got.direction, glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0),
+                                        glm::dvec3(0, 0, 1))); // its length is the spacing
 }
 
 TEST_F(VolumeFormats, NrrdFourDimensionsWithAUnitFirstAxis) {
@@ -204,6 +208,91 @@ TEST_F(VolumeFormats, NiftiBigEndianAndNegativePixdim) {
     swapAt(108, 4, 3); // vox_offset, scl_slope, scl_inter
     const Volume got = readVolume(writeFile("be.nii", header + byteSwapped(voxelBytes(v), 2)));
     expectSame(got, v);
+}
+
+// An sform that permutes and flips the axes (i runs inferior, j to the left,
+// k anterior, in NIfTI's RAS) reads into LPS.
+TEST_F(VolumeFormats, NiftiSformReadsIntoLps) {
+    const Volume v = sample(VoxelType::U8, {2.0, 3.0, 4.0});
+    NiftiHeader h = niftiFor(v);
+    h.sformCode = 2;
+    const float srow[3][4] = {{0, -3, 0, 10}, {0, 0, 4, -20}, {-2, 0, 0, 30}};
+    std::memcpy(h.srow, srow, sizeof srow);
+    h.qformCode = 1; // set too, but the sform wins
+    h.quatern[2] = 1.0f;
+    const Volume got = readVolume(writeFile("s.nii", h.bytes() + voxelBytes(v)));
+    expectSame(got, v);
+    EXPECT_EQ(got.space, Space::LPS);
+    // RAS (x, y, z) is LPS (-x, -y, z).
+    EXPECT_EQ(got.origin, glm::dvec3(-10, 20, 30));
+    EXPECT_EQ(got.direction[0], glm::dvec3(0, 0, -1));
+    EXPECT_EQ(got.direction[1], glm::dvec3(1, 0, 0));
+    EXPECT_EQ(got.direction[2], glm::dvec3(0, -1, 0));
+    // Voxel (4, 3, 2), by hand: RAS x = -3 * 3 + 10 = 1, y = 4 * 2 - 20 = -12,
+    // z = -2 * 4 + 30 = 22; in LPS (-1, 12, 22).
+    const glm::dvec3 corner = got.physicalPosition({4, 3, 2});
+    for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(corner[a], glm::dvec3(-1, 12, 22)[a], 1e-12) << a;
+}
+
+// Without an sform, the qform: a rotation by 60 degrees about z (quaternion
+// d = sin 30, a = cos 30) with qfac -1 flipping k. Neither: no orientation.
+TEST_F(VolumeFormats, NiftiQformReadsIntoLpsAndNeitherIsNone) {
+    const Volume v = sample(VoxelType::I16, {2.0, 3.0, 4.0});
+    NiftiHeader h = niftiFor(v);
+    h.qformCode = 1;
+    h.quatern[2] = 0.5f;
+    h.pixdim[0] = -1.0f;
+    h.qoffset[0] = 5.0f;
+    h.qoffset[1] = 6.0f;
+    h.qoffset[2] = 7.0f;
+    h.sformCode = 0;
+    h.srow[0][3] = 99.0f; // unused: sform_code 0
+    const Volume got = readVolume(writeFile("q.nii", h.bytes() + voxelBytes(v)));
+    expectSame(got, v);
+    EXPECT_EQ(got.space, Space::LPS);
+    // Voxel (4, 3, 2) in RAS: (5, 6, 7) + 8 (cos 60, sin 60, 0) + 9 (-sin 60, cos 60, 0)
+    // + 8 (0, 0, -1); in LPS x and y negated.
+    const double c = 0.5, s = std::sqrt(3.0) / 2.0;
+    const glm::dvec3 ras(5 + 8 * c - 9 * s, 6 + 8 * s + 9 * c, 7 - 8);
+    const glm::dvec3 corner = got.physicalPosition({4, 3, 2});
+    EXPECT_NEAR(corner.x, -ras.x, 1e-5);
+    EXPECT_NEAR(corner.y, -ras.y, 1e-5);
+    EXPECT_NEAR(corner.z, ras.z, 1e-5);
+    EXPECT_EQ(got.origin, glm::dvec3(-5, -6, 7));
+
+    h.qformCode = 0;
+    const Volume none = readVolume(writeFile("n.nii", h.bytes() + voxelBytes(v)));
+    EXPECT_EQ(none.space, Space::None);
+    EXPECT_EQ(none.origin, glm::dvec3(0.0));
+    EXPECT_EQ(none.direction, glm::dmat3(1.0));
+
+    // An sform with an axis of no length is not an orientation: the qform is taken.
+    h.qformCode = 1;
+    h.sformCode = 1;
+    const Volume degenerate = readVolume(writeFile("d.nii", h.bytes() + voxelBytes(v)));
+    EXPECT_EQ(degenerate.origin, glm::dvec3(-5, -6, 7));
+}
+
+// A NRRD written from a NIfTI keeps its LPS geometry: every voxel centre in
+// the same place.
+TEST_F(VolumeFormats, NiftiOrientationSurvivesANrrdRoundTrip) {
+    const Volume v = sample(VoxelType::U8, {2.0, 3.0, 4.0});
+    NiftiHeader h = niftiFor(v);
+    h.sformCode = 1;
+    const float srow[3][4] = {{0, -3, 0, 10}, {0, 0, 4, -20}, {-2, 0, 0, 30}};
+    std::memcpy(h.srow, srow, sizeof srow);
+    const Volume nifti = readVolume(writeFile("s.nii", h.bytes() + voxelBytes(v)));
+    writeNrrd(path("s.nrrd"), nifti);
+    const Volume nrrd = readVolume(path("s.nrrd"));
+    EXPECT_EQ(nrrd.space, Space::LPS);
+    for (int z = 0; z < v.dims.z; ++z)
+        for (int y = 0; y < v.dims.y; ++y)
+            for (int x = 0; x < v.dims.x; ++x) {
+                const glm::dvec3 a = nifti.physicalPosition({x, y, z});
+                const glm::dvec3 b = nrrd.physicalPosition({x, y, z});
+                ASSERT_NEAR(glm::distance(a, b), 0.0, 1e-9) << x << ' ' << y << ' ' << z;
+            }
 }
 
 TEST_F(VolumeFormats, RawWithOffsetAndByteOrder) {

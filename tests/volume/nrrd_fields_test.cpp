@@ -3,6 +3,9 @@
 // and the limits a header may not exceed.
 #include "volume_test_util.hpp"
 
+#include <cmath>
+#include <iterator>
+
 namespace cutaway::test {
 namespace {
 
@@ -10,6 +13,26 @@ std::string header(const std::string& type, const std::string& extra,
                    const std::string& encoding = "raw") {
     return "NRRD0004\ntype: " + type + "\ndimension: 3\nsizes: 2 2 2\nencoding: " + encoding +
            "\nendian: little\n" + extra;
+}
+
+/// The text of a NRRD file's header, up to its blank line.
+std::string headerText(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    return text.substr(0, text.find("\n\n") + 1);
+}
+
+void expectNear(glm::dvec3 got, glm::dvec3 want, double tolerance, const std::string& what) {
+    for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(got[a], want[a], tolerance) << what << " [" << a << "]";
+}
+
+/// A 5 x 4 x 3 uint8 volume, each voxel its index.
+Volume indexed(glm::dvec3 spacing) {
+    Volume v = Volume::allocate({5, 4, 3}, VoxelType::U8, spacing);
+    for (std::size_t i = 0; i < v.voxelCount(); ++i)
+        v.data[i] = std::byte(i);
+    return v;
 }
 
 } // namespace
@@ -127,6 +150,144 @@ TEST_F(NrrdFields, WriterKeepsOriginAndScaling) {
     EXPECT_EQ(got.spacing, v.spacing);
     EXPECT_EQ(got.value(5), -300 * 0.5 - 1024.0);
     EXPECT_EQ(got.value(0), -1024.0);
+}
+
+// An oblique LPS orientation (a rotation about z by 30 degrees, then the k
+// axis flipped) survives writing and reading: same directions, spacing,
+// origin and space, written as a space with space directions, no spacings.
+TEST_F(NrrdFields, WriterKeepsAnLpsOrientation) {
+    Volume v = indexed({0.5, 1.25, 3.0});
+    const double c = std::cos(glm::radians(30.0)), s = std::sin(glm::radians(30.0));
+    v.direction = glm::dmat3(glm::dvec3(c, s, 0), glm::dvec3(-s, c, 0), glm::dvec3(0, 0, -1));
+    v.origin = {-10.5, 20.0, 3.25};
+    v.space = Space::LPS;
+    writeNrrd(path("lps.nrrd"), v, false);
+    const std::string text = headerText(path("lps.nrrd"));
+    EXPECT_NE(text.find("space: left-posterior-superior\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("space directions: ("), std::string::npos) << text;
+    EXPECT_NE(text.find("space origin: (-10.5,20,3.25)\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("(0,0,-3)\n"), std::string::npos) << "k runs inferior: " << text;
+    EXPECT_EQ(text.find("spacings"), std::string::npos) << text;
+    EXPECT_EQ(text.find("space dimension"), std::string::npos) << "not both: " << text;
+
+    const Volume got = readVolume(path("lps.nrrd"));
+    EXPECT_EQ(got.space, Space::LPS);
+    expectNear(got.spacing, v.spacing, 1e-12, "spacing");
+    for (int a = 0; a < 3; ++a)
+        expectNear(got.direction[a], v.direction[a], 1e-12, "direction " + std::to_string(a));
+    EXPECT_EQ(got.origin, v.origin);
+    // The far corner voxel's centre, by hand: origin + 4 * 0.5 * i-direction
+    // + 3 * 1.25 * j-direction - 2 * 3 * z.
+    const glm::dvec3 corner(-10.5 + 2.0 * c - 3.75 * s, 20.0 + 2.0 * s + 3.75 * c, 3.25 - 6.0);
+    expectNear(got.physicalPosition({4, 3, 2}), corner, 1e-9, "corner");
+    for (std::size_t i = 0; i < v.voxelCount(); ++i)
+        ASSERT_EQ(got.raw(i), v.raw(i)) << i;
+
+    // Written again, the same header.
+    writeNrrd(path("again.nrrd"), got, false);
+    EXPECT_EQ(headerText(path("again.nrrd")), text);
+}
+
+// A RAS (and a LAS) file reads into LPS: x and y (y only) negated, for the
+// directions and the origin. The axes are permuted and flipped: i runs
+// anterior, j to the right's opposite (left), k inferior.
+TEST_F(NrrdFields, RasAndLasSpacesReadIntoLps) {
+    const std::string geometry = "sizes: 5 4 3\nspace directions: (0,2,0) (-3,0,0) (0,0,-0.5)\n"
+                                 "space origin: (10,20,30)\nencoding: raw\n\n" +
+                                 std::string(60, '\x01');
+    const auto read = [&](const std::string& name, const std::string& space) {
+        return readVolume(writeFile(name, "NRRD0004\ntype: uint8\ndimension: 3\nspace: " + space +
+                                              "\n" + geometry));
+    };
+    // Voxel (4, 3, 2) in the file's space: (10, 20, 30) + 4 (0,2,0) + 3 (-3,0,0)
+    // + 2 (0,0,-0.5) = (1, 28, 29); in LPS (-1, -28, 29) from RAS, (1, -28, 29)
+    // from LAS.
+    for (const char* spelling : {"right-anterior-superior", "RAS", "Right Anterior Superior"}) {
+        SCOPED_TRACE(spelling);
+        const Volume ras = read("ras.nrrd", spelling);
+        EXPECT_EQ(ras.space, Space::LPS);
+        EXPECT_EQ(ras.spacing, glm::dvec3(2, 3, 0.5));
+        EXPECT_EQ(ras.origin, glm::dvec3(-10, -20, 30));
+        EXPECT_EQ(ras.direction[0], glm::dvec3(0, -1, 0));
+        EXPECT_EQ(ras.direction[1], glm::dvec3(1, 0, 0));
+        EXPECT_EQ(ras.direction[2], glm::dvec3(0, 0, -1));
+        expectNear(ras.physicalPosition({4, 3, 2}), {-1, -28, 29}, 1e-12, "RAS corner");
+    }
+    const Volume las = read("las.nrrd", "left-anterior-superior");
+    EXPECT_EQ(las.space, Space::LPS);
+    EXPECT_EQ(las.origin, glm::dvec3(10, -20, 30));
+    expectNear(las.physicalPosition({4, 3, 2}), {1, -28, 29}, 1e-12, "LAS corner");
+
+    // Written back: LPS, the same physical positions.
+    writeNrrd(path("back.nrrd"), read("ras.nrrd", "RAS"), false);
+    const std::string text = headerText(path("back.nrrd"));
+    EXPECT_NE(text.find("space: left-posterior-superior\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("space directions: (0,-2,0) (3,0,0) (0,0,-0.5)\n"), std::string::npos)
+        << text;
+    EXPECT_NE(text.find("space origin: (-10,-20,30)\n"), std::string::npos) << text;
+
+    // A time space: the spatial part of 4-component vectors.
+    const Volume rast = readVolume(
+        writeFile("rast.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\nspace: RAST\nsizes: 5 4 3\n"
+                               "space directions: (0,2,0,0) (-3,0,0,0) (0,0,-0.5,0)\n"
+                               "space origin: (10,20,30,7)\nencoding: raw\n\n" +
+                                   std::string(60, '\x01')));
+    EXPECT_EQ(rast.space, Space::LPS);
+    expectNear(rast.physicalPosition({4, 3, 2}), {-1, -28, 29}, 1e-12, "RAST corner");
+}
+
+// scanner-xyz, 3D-right-handed and a bare `space dimension: 3` have no
+// anatomy: their vectors are kept as written, and written back with
+// `space dimension: 3`.
+TEST_F(NrrdFields, NonAnatomicalSpacesKeepTheirVectors) {
+    for (const char* space : {"space: scanner-xyz", "space: 3D-right-handed",
+                              "space: 3D-left-handed", "space dimension: 3"}) {
+        SCOPED_TRACE(space);
+        const Volume v = readVolume(writeFile(
+            "n.nrrd", std::string("NRRD0004\ntype: uint8\ndimension: 3\n") + space +
+                          "\nsizes: 5 4 3\nspace directions: (0,2,0) (-3,0,0) (0,0,-0.5)\n"
+                          "space origin: (10,20,30)\nencoding: raw\n\n" +
+                          std::string(60, '\x01')));
+        EXPECT_EQ(v.space, Space::NonAnatomical);
+        EXPECT_EQ(v.origin, glm::dvec3(10, 20, 30));
+        EXPECT_EQ(v.direction[0], glm::dvec3(0, 1, 0));
+        EXPECT_EQ(v.direction[1], glm::dvec3(-1, 0, 0));
+        expectNear(v.physicalPosition({4, 3, 2}), {1, 28, 29}, 1e-12, "corner");
+        writeNrrd(path("back.nrrd"), v, false);
+        const std::string text = headerText(path("back.nrrd"));
+        EXPECT_NE(text.find("space dimension: 3\nspace directions: (0,2,0) (-3,0,0) (0,0,-0.5)\n"
+                            "space origin: (10,20,30)\n"),
+                  std::string::npos)
+            << text;
+        EXPECT_EQ(text.find("space:"), std::string::npos) << text;
+    }
+    // Without any orientation: `spacings`, as before.
+    writeNrrd(path("plain.nrrd"), indexed({1, 2, 3}), false);
+    const std::string plain = headerText(path("plain.nrrd"));
+    EXPECT_NE(plain.find("spacings: 1 2 3\n"), std::string::npos) << plain;
+    EXPECT_EQ(plain.find("space"), std::string::npos) << plain;
+    EXPECT_EQ(readVolume(path("plain.nrrd")).space, Space::None);
+}
+
+TEST_F(NrrdFields, BadSpacesAreRefused) {
+    const auto message = [&](const std::string& space, const std::string& directions) {
+        return inputError([&] {
+            readVolume(writeFile("bad.nrrd", "NRRD0004\ntype: uint8\ndimension: 3\n" + space +
+                                                 "sizes: 2 2 2\nspace directions: " + directions +
+                                                 "\nencoding: raw\n\n" + std::string(8, '\0')));
+        });
+    };
+    const std::string unknown = message("space: RAI\n", "(1,0,0) (0,1,0) (0,0,1)");
+    EXPECT_NE(unknown.find("unknown space 'RAI'"), std::string::npos) << unknown;
+    const std::string components = message("space: LPS\n", "(1,0) (0,1) (0,0)");
+    EXPECT_NE(components.find("2 components but the space has 3"), std::string::npos) << components;
+    const std::string dimension = message("space dimension: 2\n", "(1,0) (0,1) (0,0)");
+    EXPECT_NE(dimension.find("space dimension 2"), std::string::npos) << dimension;
+    const std::string contradiction =
+        message("space: LPS\nspace dimension: 4\n", "(1,0,0) (0,1,0) (0,0,1)");
+    EXPECT_NE(contradiction.find("contradicts"), std::string::npos) << contradiction;
+    const std::string zero = message("space: LPS\n", "(1,0,0) (0,0,0) (0,0,1)");
+    EXPECT_NE(zero.find("spacing"), std::string::npos) << zero;
 }
 
 TEST_F(NrrdFields, WriterFailureNamesThePath) {

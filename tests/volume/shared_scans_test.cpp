@@ -48,6 +48,42 @@ TEST_P(SharedScans, LoadWithTheirStatedShape) {
     }
 }
 
+// Where the scans lie in LPS, from their headers: brain_t1's sform (code 2)
+// flips x and maps j to inferior and k to posterior (FreeSurfer's conformed
+// LIA orientation); ct_head's sform (code 1) is diagonal in RAS; chest_ct is
+// an LPS NRRD with diagonal space directions at the origin.
+TEST(SharedScanGeometry, OrientationsInLps) {
+    const std::filesystem::path folder(CUTAWAY_SHARED_DATA);
+    if (!std::filesystem::exists(folder))
+        GTEST_SKIP() << "shared data folder not found at " << folder << ": real-scan tests skipped";
+    const auto expectNear = [](glm::dvec3 got, glm::dvec3 want, const char* what) {
+        for (int a = 0; a < 3; ++a)
+            EXPECT_NEAR(got[a], want[a], 1e-4) << what << " [" << a << "]";
+    };
+    const Volume brain = readVolume(folder / "brain_t1.nii.gz");
+    EXPECT_EQ(brain.space, Space::LPS);
+    expectNear(brain.direction[0], {1, 0, 0}, "brain i");
+    expectNear(brain.direction[1], {0, 0, -1}, "brain j");
+    expectNear(brain.direction[2], {0, -1, 0}, "brain k");
+    expectNear(brain.origin, {-121.76697, 118.48401, 127.56124}, "brain origin");
+    // The last voxel, from the sform rows: RAS (121.76697 - 255, -118.48401 + 255,
+    // 127.56124 - 255) (pixdim and the sform's columns are 1 within 1.2e-7).
+    expectNear(brain.physicalPosition({255, 255, 255}), {133.23302, -136.51596, -127.43873},
+               "brain corner");
+
+    const Volume ct = readVolume(folder / "ct_head.nii.gz");
+    EXPECT_EQ(ct.space, Space::LPS);
+    expectNear(ct.direction[0], {-1, 0, 0}, "ct i");
+    expectNear(ct.direction[1], {0, -1, 0}, "ct j");
+    expectNear(ct.direction[2], {0, 0, 1}, "ct k");
+    expectNear(ct.origin, {104, 128, -112}, "ct origin");
+
+    const Volume chest = readVolume(folder / "chest_ct.nrrd");
+    EXPECT_EQ(chest.space, Space::LPS);
+    EXPECT_EQ(chest.direction, glm::dmat3(1.0));
+    EXPECT_EQ(chest.origin, glm::dvec3(0.0));
+}
+
 INSTANTIATE_TEST_SUITE_P(Data, SharedScans, ::testing::ValuesIn(kScans), [](const auto& param) {
     std::string name = param.param.file;
     for (char& c : name)

@@ -66,18 +66,19 @@ TEST_F(NiftiDetails, PixdimZeroIsOneMillimetreAndUnitFourthDimension) {
     EXPECT_EQ(v.value(5), 5.0);
 }
 
+// The origin is NIfTI's RAS offset in LPS: x and y negated.
 TEST_F(NiftiDetails, OriginFromSformElseQform) {
     NiftiHeader h;
     std::string bytes = h.bytes();
     const std::int16_t one = 1;
     const float qoffset[3] = {1.5f, -2.0f, 3.0f};
-    const float srowX[4] = {1, 0, 0, -90.0f};
+    const float srow[12] = {1, 0, 0, -90.0f, 0, 1, 0, 0, 0, 0, 1, 0};
     std::memcpy(&bytes[252], &one, 2); // qform_code
     std::memcpy(&bytes[268], qoffset, 12);
-    EXPECT_EQ(readVolume(writeFile("q.nii", bytes + "\x01")).origin, glm::dvec3(1.5, -2, 3));
+    EXPECT_EQ(readVolume(writeFile("q.nii", bytes + "\x01")).origin, glm::dvec3(-1.5, 2, 3));
     std::memcpy(&bytes[254], &one, 2); // sform_code wins
-    std::memcpy(&bytes[280], srowX, 16);
-    EXPECT_EQ(readVolume(writeFile("s.nii", bytes + "\x01")).origin, glm::dvec3(-90, 0, 0));
+    std::memcpy(&bytes[280], srow, 48);
+    EXPECT_EQ(readVolume(writeFile("s.nii", bytes + "\x01")).origin, glm::dvec3(90, 0, 0));
 }
 
 TEST_F(NiftiDetails, DataAfterExtensionsAndOffsetsPastTheEnd) {

@@ -73,6 +73,13 @@ struct NiftiHeader {
     float sclInter = 0;
     std::int32_t sizeofHdr = 348;
     const char* magic = "n+1";
+    // Orientation (NIfTI's RAS space): the qform (quaternion b, c, d, qfac in
+    // pixdim[0], offset) and the sform (rows of the affine).
+    std::int16_t qformCode = 0;
+    std::int16_t sformCode = 0;
+    float quatern[3] = {0, 0, 0};
+    float qoffset[3] = {0, 0, 0};
+    float srow[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
 
     std::string bytes() const {
         std::string h(352, '\0');
@@ -85,6 +92,11 @@ struct NiftiHeader {
         put(108, &voxOffset, 4);
         put(112, &sclSlope, 4);
         put(116, &sclInter, 4);
+        put(252, &qformCode, 2);
+        put(254, &sformCode, 2);
+        put(256, quatern, 12);
+        put(268, qoffset, 12);
+        put(280, srow, 48);
         put(344, magic, std::strlen(magic) + 1);
         return h;
     }
