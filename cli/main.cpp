@@ -2,7 +2,7 @@
 //
 //   cutaway render SCENE [-o PATTERN] [--frames A..B] [--shard I/N] [--size WxH]
 //                  [--set /json/pointer=VALUE ...] [--png] [--skip-existing] [--fail-fast]
-//                  [--device NAME] [--quiet]
+//                  [--device NAME] [--memory-budget SIZE] [--quiet]
 //   cutaway validate SCENE [--set ...]
 //   cutaway export SCENE [--frame N] -o OUT.nrrd [--labels-output L.nrrd] [--set ...] [--raw]
 //   cutaway info FILE
@@ -69,6 +69,24 @@ std::vector<cutaway::SceneSetting> parseSettings(const std::vector<std::string>&
     return out;
 }
 
+// Frames outside /animation/frames render with every track holding its first
+// or last key; allowed (a held pose), but rarely what was meant.
+void warnOutsideAnimation(const cutaway::Scene& scene, int first, int last, const char* option) {
+    const auto& a = scene.animation;
+    if (first >= a.firstFrame && last <= a.lastFrame) return;
+    std::fprintf(stderr,
+                 "cutaway: warning: %s reaches outside the scene's /animation/frames %d..%d; "
+                 "there every track holds its nearest key\n",
+                 option, a.firstFrame, a.lastFrame);
+}
+
+int parseFrame(const std::string& text) {
+    static const std::regex number("[0-9]{1,7}");
+    if (!std::regex_match(text, number))
+        throw cutaway::InputError("--frame: expected one frame number >= 0, got \"" + text + "\"");
+    return std::stoi(text);
+}
+
 int runRender(const RenderArgs& args) {
     namespace job = cutaway::job;
     // Everything about the input is checked before a device is opened.
@@ -77,10 +95,16 @@ int runRender(const RenderArgs& args) {
     if (!args.output.empty()) options.overrides.outputPattern = args.output;
     if (!args.size.empty()) options.overrides.size = parseSize(args.size);
     options.overrides.png = args.png;
-    if (!args.frames.empty()) options.frames = job::parseFrameRange(args.frames);
+    if (!args.frames.empty()) {
+        options.frames = job::parseFrameRange(args.frames);
+        if (!args.quiet)
+            warnOutsideAnimation(scene, options.frames->first, options.frames->last, "--frames");
+    }
     if (!args.shard.empty()) options.shard = job::parseShard(args.shard);
     options.skipExisting = args.skipExisting;
     options.failFast = args.failFast;
+
+    job::checkOutputPaths(scene, options);
 
     cutaway::cli::installInterruptHandlers();
     cutaway::cli::Progress progress(args.quiet, isatty(STDERR_FILENO) != 0);
@@ -121,7 +145,7 @@ struct ExportArgs {
     std::string output;
     std::vector<std::string> sets;
     std::string labelsOutput;
-    int frame = -1;
+    std::string frame;
     bool raw = false;
 };
 
@@ -130,7 +154,11 @@ int runExport(const ExportArgs& args) {
     if (out.extension() != ".nrrd")
         throw cutaway::InputError("-o " + args.output + ": expected a .nrrd file name");
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
-    const int frame = args.frame >= 0 ? args.frame : base.animation.firstFrame;
+    int frame = base.animation.firstFrame;
+    if (!args.frame.empty()) {
+        frame = parseFrame(args.frame);
+        warnOutsideAnimation(base, frame, frame, "--frame");
+    }
     const cutaway::Scene scene = cutaway::sceneAtFrame(base, frame);
     const std::filesystem::path labelsOut(args.labelsOutput);
     if (!args.labelsOutput.empty()) {
@@ -147,6 +175,7 @@ int runExport(const ExportArgs& args) {
     const cutaway::job::Exported exported =
         cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
     const auto write = [&](const std::filesystem::path& path, const cutaway::Volume& v) {
+        cutaway::job::createOutputFolder(path); // as `render` does
         cutaway::writeNrrd(path, v, !args.raw);
         if (isatty(STDERR_FILENO))
             std::fprintf(stderr, "wrote %s: frame %d, %d x %d x %d %s voxels\n",
@@ -213,9 +242,8 @@ int main(int argc, char** argv) {
                   "no device needed");
     exportCommand->add_option("scene", exportArgs.scene, "Scene file (JSON)")->required();
     exportCommand->add_option("-o,--output", exportArgs.output, "Output file, .nrrd")->required();
-    exportCommand
-        ->add_option("--frame", exportArgs.frame, "Frame of the animation (default: its first)")
-        ->check(CLI::NonNegativeNumber);
+    exportCommand->add_option("--frame", exportArgs.frame,
+                              "Frame of the animation (default: its first)");
     exportCommand->add_option("--set", exportArgs.sets,
                               "Override a scene value: /json/pointer=VALUE");
     exportCommand->add_option("--labels-output", exportArgs.labelsOutput,
@@ -241,8 +269,25 @@ int main(int argc, char** argv) {
             const cutaway::Scene scene =
                 cutaway::loadScene(validateScene, parseSettings(validateSets));
             const auto& a = scene.animation;
-            for (int f = a.firstFrame; f <= a.lastFrame && !a.tracks.empty(); ++f)
-                cutaway::sceneAtFrame(scene, f);
+            // Every frame is checked; the first few failures are shown.
+            std::vector<std::string> failures;
+            int failed = 0;
+            for (int f = a.firstFrame; f <= a.lastFrame && !a.tracks.empty(); ++f) {
+                try {
+                    cutaway::sceneAtFrame(scene, f);
+                } catch (const cutaway::InputError& e) {
+                    if (++failed <= 5) failures.push_back(e.what());
+                }
+            }
+            if (failed > 0) {
+                for (const std::string& failure : failures)
+                    std::cerr << "cutaway: error: " << failure << "\n";
+                if (failed > 5)
+                    std::cerr << "cutaway: error: ... and " << failed - 5 << " more frame(s)\n";
+                std::cerr << "cutaway: " << failed << " of " << a.lastFrame - a.firstFrame + 1
+                          << " frames are not valid\n";
+                return kExitInput;
+            }
             cutaway::job::checkSceneMeshes(scene);
             std::printf("%s: valid (frames %d..%d)\n", validateScene.c_str(), a.firstFrame,
                         a.lastFrame);

@@ -11,6 +11,9 @@ void Progress::frame(const job::FrameEvent& event) {
         std::fprintf(stderr, "cutaway: frame %d failed: %s\n", event.frame, event.error.c_str());
         return;
     }
+    if (!m_quiet)
+        for (const std::string& warning : event.warnings)
+            std::fprintf(stderr, "cutaway: warning: %s\n", warning.c_str());
     if (event.kind == Kind::Rendered) {
         m_renderedSeconds += event.seconds;
         ++m_rendered;

@@ -1,7 +1,8 @@
 #pragma once
 // What a sequence run prints. On a terminal: a line per frame with its time
 // and an ETA, and a summary at the end. Not on a terminal, or with --quiet:
-// nothing but errors. Failed frames are always reported on stderr.
+// nothing but errors and warnings (--quiet: errors only). Failed frames are
+// always reported on stderr.
 #include "job/sequence.hpp"
 
 #include <chrono>
@@ -10,11 +11,12 @@ namespace cutaway::cli {
 
 class Progress {
 public:
-    Progress(bool quiet, bool terminal) : m_verbose(!quiet && terminal) {}
+    Progress(bool quiet, bool terminal) : m_quiet(quiet), m_verbose(!quiet && terminal) {}
     void frame(const job::FrameEvent& event);
     void summary(const job::SequenceSummary& summary) const;
 
 private:
+    bool m_quiet;
     bool m_verbose;
     double m_renderedSeconds = 0.0;
     int m_rendered = 0;

@@ -87,6 +87,34 @@ private:
     Slot* m_slot = nullptr;
 };
 
+// A link is written through: the file it names is replaced (or made, for a
+// link to a file not written yet), the link stays. Gives up on a loop.
+fs::path followLinks(const fs::path& path) {
+    fs::path p = path;
+    for (int hops = 0; hops < 40; ++hops) {
+        std::error_code ec;
+        if (!fs::is_symlink(fs::symlink_status(p, ec))) return p;
+        const fs::path next = fs::read_symlink(p, ec);
+        if (ec) return p;
+        p = (next.is_absolute() ? next : p.parent_path() / next).lexically_normal();
+    }
+    throw InputError("cannot write " + path.string() + ": too many levels of symbolic links");
+}
+
+void checkReplaceable(const fs::path& target, const fs::path& requested) {
+    std::error_code ec;
+    const fs::file_status status = fs::status(target, ec);
+    if (ec || !fs::exists(status) || fs::is_regular_file(status)) return;
+    const char* what = fs::is_directory(status)        ? "a folder"
+                       : fs::is_character_file(status) ? "a character device"
+                       : fs::is_block_file(status)     ? "a block device"
+                       : fs::is_fifo(status)           ? "a named pipe"
+                       : fs::is_socket(status)         ? "a socket"
+                                                       : "not a regular file";
+    throw InputError("cannot write " + requested.string() + ": it exists and is " + what +
+                     ", which cutaway does not replace; name a regular file");
+}
+
 } // namespace
 
 void removeTemporariesNow() noexcept {
@@ -95,17 +123,19 @@ void removeTemporariesNow() noexcept {
     }
 }
 
-void writeAtomically(const fs::path& target,
+void writeAtomically(const fs::path& requested,
                      const std::function<void(const fs::path& tmp)>& write) {
-    if (target.filename().empty()) {
-        throw RuntimeError("cannot write " + target.string() + ": the path names no file");
+    if (requested.filename().empty()) {
+        throw RuntimeError("cannot write " + requested.string() + ": the path names no file");
     }
+    const fs::path target = followLinks(requested);
+    checkReplaceable(target, requested);
     const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     // Checked up front so the message names the folder rather than whatever
     // the writer (OpenEXR, an ofstream) reports about the temporary name.
     if (::access(folder.c_str(), W_OK | X_OK) != 0) {
         const int err = errno;
-        throw RuntimeError("cannot write " + target.string() + ": folder " + folder.string() +
+        throw RuntimeError("cannot write " + requested.string() + ": folder " + folder.string() +
                            " is not writable (" + std::strerror(err) + ")");
     }
 
@@ -123,7 +153,7 @@ void writeAtomically(const fs::path& target,
     fs::rename(tmp, target, ec);
     if (ec) {
         removeQuietly(tmp);
-        throw RuntimeError("cannot write " + target.string() + ": renaming " + tmp.string() +
+        throw RuntimeError("cannot write " + requested.string() + ": renaming " + tmp.string() +
                            " over it failed (" + ec.message() + ")");
     }
 }

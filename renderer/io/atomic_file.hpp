@@ -2,15 +2,19 @@
 // Writes a file so that readers never see a partial one: the content goes to a
 // temporary name in the same folder (same file system), then is renamed over
 // the target. If writing throws, the temporary is removed and the target is
-// left as it was.
+// left as it was. A target that is a symbolic link is written through (the
+// file it names is replaced, the link stays); one that exists and is not a
+// regular file (a folder, a device such as /dev/null, a named pipe) is
+// refused, since the rename would replace it with a regular file.
 #include <filesystem>
 #include <functional>
 
 namespace cutaway {
 
 /// Calls write(tmp) with a temporary path next to `target`, then renames it to
-/// `target`. Throws RuntimeError naming the target when the folder is not
-/// writable or the rename fails; rethrows whatever write() throws, after
+/// `target`. Throws InputError naming the target when it exists and is not a
+/// regular file, RuntimeError when the folder is not writable or the rename
+/// fails; rethrows whatever write() throws, after
 /// removing the temporary.
 void writeAtomically(const std::filesystem::path& target,
                      const std::function<void(const std::filesystem::path& tmp)>& write);

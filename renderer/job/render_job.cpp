@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "mesh/mesh.hpp"
+#include "operators/operator_geometry.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
 #include "volume/phantom.hpp"
@@ -230,6 +231,7 @@ Image FrameRenderer::render(const Scene& scene) {
         m_volumeKey = key;
         ++m_uploads;
     }
+    warnOfOperatorsOutside(scene);
     Scene live = scene;
     // Attached meshes are placed in the world first: under sequential
     // composition the live operators are a suffix of the scene's.
@@ -247,6 +249,22 @@ Image FrameRenderer::render(const Scene& scene) {
     for (float& id : image.operatorIds)
         if (id >= 0.0f) id += first;
     return image;
+}
+
+void FrameRenderer::warnOfOperatorsOutside(const Scene& scene) {
+    // The operator's own box V_T (not where it moves material to): when it
+    // misses the volume's box, nothing is cut, moved or kept.
+    const operators::WorldBox volume{glm::dmat4(1.0), {m_volume->box.lo, m_volume->box.hi}};
+    for (std::size_t i = 0; i < scene.operators.size(); ++i) {
+        const OperatorSpec& op = scene.operators[i];
+        if (m_warnedOutside.contains(i) ||
+            operators::intersects(operators::WorldBox{op.localToWorld, {}}, volume))
+            continue;
+        m_warnedOutside.insert(i);
+        m_warnings.push_back("/operators/" + std::to_string(i) + ": \"" + op.name +
+                             "\" lies outside the volume, so it changes nothing; "
+                             "placements are in mm with the volume's centre at the origin");
+    }
 }
 
 Image renderImage(const gpu::Context& ctx, const Scene& scene) {

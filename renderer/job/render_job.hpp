@@ -16,7 +16,9 @@
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cutaway::job {
@@ -97,14 +99,21 @@ public:
     /// What the renders since the last call derived, one line each (e.g. the
     /// Otsu threshold of surface alignment and its bake time).
     std::vector<std::string> takeNotes() { return m_renderer.takeNotes(); }
+    /// What in the scenes since the last call is likely a mistake, once per
+    /// run: an operator whose box does not reach the volume moves nothing.
+    std::vector<std::string> takeWarnings() { return std::exchange(m_warnings, {}); }
 
 private:
+    void warnOfOperatorsOutside(const Scene& scene);
+
     const gpu::Context& m_ctx;
     bake::GradientBaker m_baker;
     render::SliceRenderer m_renderer;
     std::unique_ptr<render::GpuVolume> m_volume;
     std::string m_volumeKey;
     int m_uploads = 0;
+    std::vector<std::string> m_warnings;
+    std::set<std::size_t> m_warnedOutside; ///< operator indices already warned of
 };
 
 /// Renders one frame to an image without writing anything (tests, benchmark).

@@ -20,6 +20,8 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+} // namespace
+
 void createOutputFolder(const std::filesystem::path& file) {
     if (!file.has_parent_path()) return;
     std::error_code ec;
@@ -28,8 +30,6 @@ void createOutputFolder(const std::filesystem::path& file) {
         throw RuntimeError("cannot create the output folder " + file.parent_path().string() + ": " +
                            ec.message());
 }
-
-} // namespace
 
 FrameRange parseFrameRange(const std::string& text) {
     static const std::regex range("([0-9]{1,7})(?:\\.\\.([0-9]{1,7}))?");
@@ -64,15 +64,49 @@ std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& optio
     return frames;
 }
 
+void checkOutputPaths(const Scene& scene, const SequenceOptions& options) {
+    const std::vector<int> frames = framesToRender(scene, options);
+    if (frames.empty()) return;
+    const std::string& pattern = options.overrides.outputPattern.value_or(scene.output.pattern);
+    const bool png = scene.output.png || options.overrides.png;
+    const std::string file = scene.file.empty() ? "" : scene.file.string() + ": ";
+    const std::string where = options.overrides.outputPattern
+                                  ? "-o " + pattern
+                                  : file + "/output/pattern \"" + pattern + "\"";
+    if (frames.size() > 1 &&
+        expandPattern(pattern, frames.front()) == expandPattern(pattern, frames.back()))
+        throw InputError(where + ": no frame number (#### or %04d) in a run of " +
+                         std::to_string(frames.size()) +
+                         " frames; each frame would replace the last");
+    for (const int frame : frames) {
+        const std::filesystem::path exr = expandPattern(pattern, frame);
+        if (png && previewPath(exr) == exr)
+            throw InputError(where + ": the EXR file " + exr.string() +
+                             " would be replaced by its PNG preview; name it .exr");
+        std::vector<std::filesystem::path> paths{exr};
+        if (png) paths.push_back(previewPath(exr));
+        for (const std::filesystem::path& path : paths) {
+            std::error_code ec;
+            const auto status = std::filesystem::status(path, ec);
+            if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+                throw InputError(where + ": " + path.string() +
+                                 " exists and is not a regular file (a folder, a device, a "
+                                 "pipe); cutaway does not replace it");
+        }
+    }
+}
+
 namespace {
 
 // A rendered frame on its way to disk. Writing frame n overlaps rendering
 // frame n + 1 (docs/performance.md): the files are written on another thread
 // while the device renders the next frame.
+// A frame's time is its own: its render (which ended before the write
+// began) plus its write, not the next frame's render that the write overlaps.
 struct PendingWrite {
     FrameEvent event;
-    Clock::time_point start;
-    std::future<void> done;
+    double renderSeconds = 0.0;
+    std::future<double> writeSeconds;
 };
 
 ExrCompression exrCompression(Compression compression) {
@@ -91,15 +125,25 @@ ExrCompression exrCompression(Compression compression) {
     return ExrCompression::Zip;
 }
 
-PendingWrite startWrite(FrameEvent event, Clock::time_point start, Image image, ExrOptions exr) {
+PendingWrite startWrite(FrameEvent event, double renderSeconds, Image image, ExrOptions exr) {
     auto write = [exrPath = event.exr, png = event.png, image = std::move(image),
                   exr = std::move(exr)]() mutable {
+        const auto start = Clock::now();
         if (!image.operatorIds.empty()) exr.channels.push_back({"operator_id", &image.operatorIds});
         createOutputFolder(exrPath);
         writeExr(exrPath, image, exr);
-        if (png) writePng(*png, image);
+        if (png) {
+            try {
+                writePng(*png, image);
+            } catch (...) { // a frame's files are written both or neither (a full disk)
+                std::error_code ignored;
+                std::filesystem::remove(exrPath, ignored);
+                throw;
+            }
+        }
+        return secondsSince(start);
     };
-    return {std::move(event), start, std::async(std::launch::async, std::move(write))};
+    return {std::move(event), renderSeconds, std::async(std::launch::async, std::move(write))};
 }
 
 } // namespace
@@ -107,6 +151,7 @@ PendingWrite startWrite(FrameEvent event, Clock::time_point start, Image image, 
 SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                                const SequenceOptions& options) {
     const auto runStart = Clock::now();
+    checkOutputPaths(scene, options);
     const auto stop = [&] { return options.stopRequested && options.stopRequested(); };
     const std::vector<int> frames = framesToRender(scene, options);
     SequenceSummary summary;
@@ -128,9 +173,8 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
         PendingWrite p = std::move(*pending);
         pending.reset();
         try {
-            p.done.get();
+            p.event.seconds = p.renderSeconds + p.writeSeconds.get();
             p.event.kind = FrameEvent::Kind::Rendered;
-            p.event.seconds = secondsSince(p.start);
             ++summary.rendered;
             summary.frameSeconds.push_back(p.event.seconds);
             summary.doneSeconds.push_back(secondsSince(runStart));
@@ -138,7 +182,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             p.event.kind = FrameEvent::Kind::Failed;
             p.event.error = e.what();
             p.event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
-            p.event.seconds = secondsSince(p.start);
+            p.event.seconds = p.renderSeconds;
             // A full disk, a vanished or read-only folder: later frames would
             // fail the same way after rendering for nothing.
             summary.writeFailed = true;
@@ -172,7 +216,11 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             }
             if (!renderer) renderer = std::make_unique<FrameRenderer>(ctx);
             Image image = renderer->render(frameScene);
+            const double renderSeconds = secondsSince(frameStart);
             event.notes = renderer->takeNotes();
+            for (const std::string& warning : renderer->takeWarnings())
+                event.warnings.push_back(scene.file.empty() ? warning
+                                                            : scene.file.string() + ": " + warning);
             finishPending();
             if (stop()) { // the frame in flight is discarded, never written
                 summary.stopped = true;
@@ -188,13 +236,14 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                               {"cutaway/scene", frameScene.document.dump()}};
             for (std::size_t n = 0; n < event.notes.size(); ++n)
                 exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
-            pending = startWrite(std::move(event), frameStart, std::move(image), std::move(exr));
+            pending = startWrite(std::move(event), renderSeconds, std::move(image), std::move(exr));
         } catch (const Error& e) {
             finishPending();
             event.kind = FrameEvent::Kind::Failed;
             event.error = e.what();
             // A JSON pointer is a place in the scene file: name the file too.
-            if (event.error.starts_with('/') && !scene.file.empty())
+            if (event.error.starts_with('/') && !scene.file.empty() &&
+                !event.error.starts_with(scene.file.string()))
                 event.error = scene.file.string() + ": " + event.error;
             event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
             event.seconds = secondsSince(frameStart);

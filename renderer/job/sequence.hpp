@@ -24,6 +24,10 @@ struct FrameRange {
     int last = 0; ///< inclusive
 };
 
+/// Creates the folders a file's path names, if missing; throws RuntimeError
+/// naming the folder when it cannot.
+void createOutputFolder(const std::filesystem::path& file);
+
 /// Parses "A..B" or "N" (frame numbers >= 0); throws InputError naming --frames.
 FrameRange parseFrameRange(const std::string& text);
 
@@ -43,10 +47,11 @@ struct FrameEvent {
     int total = 0;    ///< frames this run will visit
     std::filesystem::path exr;
     std::optional<std::filesystem::path> png;
-    double seconds = 0.0;
-    std::string error;     ///< for Failed
+    double seconds = 0.0; ///< its render plus its files' write (the write overlaps the next render)
+    std::string error;    ///< for Failed
     bool badInput = false; ///< Failed because of the scene (exit 2) rather than at run time
-    std::vector<std::string> notes; ///< what this frame derived (thresholds, feature bakes)
+    std::vector<std::string> notes;    ///< what this frame derived (thresholds, feature bakes)
+    std::vector<std::string> warnings; ///< likely mistakes in the scene, each once per run
 };
 
 struct SequenceOptions {
@@ -68,7 +73,7 @@ struct SequenceSummary {
     bool writeFailed = false;      ///< a frame's files could not be written: the run stopped there
     bool resourceExceeded = false; ///< a device limit or the memory budget stopped the run
     int volumeUploads = 0; ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
-    std::vector<double> frameSeconds; ///< of rendered frames
+    std::vector<double> frameSeconds; ///< of rendered frames, as FrameEvent::seconds
     /// When each rendered frame's files were written, in seconds since the run
     /// began: the rate between the first and the last is the steady one, after
     /// the first frame's loading and bakes.
@@ -78,6 +83,13 @@ struct SequenceSummary {
 
 /// The frames this run visits, in order.
 std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& options);
+
+/// Checks the run's output paths before anything is rendered; throws
+/// InputError naming -o or the scene's /output/pattern when the pattern has
+/// no frame number (#### or %04d) but the run visits several frames (each
+/// would replace the last), when an EXR path is its own PNG preview (a
+/// pattern ending in .png), or when a path exists and is not a regular file.
+void checkOutputPaths(const Scene& scene, const SequenceOptions& options);
 
 /// Renders and writes the frames. Per-frame errors are reported through
 /// onFrame and counted; a frame interrupted by stopRequested is discarded

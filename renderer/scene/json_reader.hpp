@@ -77,7 +77,8 @@ struct IntegerRange {
 std::string formatNumber(double value);
 /// A JSON value as text, cut to about `maxChars` characters ("..." marks a cut).
 std::string describeValue(const nlohmann::json& value, std::size_t maxChars = 40);
-/// Levenshtein distance (insertions, deletions, substitutions).
+/// Edit distance: insertions, deletions, substitutions and swaps of two
+/// neighbouring characters, one edit each (optimal string alignment).
 std::size_t editDistance(std::string_view a, std::string_view b);
 /// The candidate closest to `word` if it is close enough to be a likely typo.
 std::optional<std::string> closestMatch(std::string_view word,

@@ -172,4 +172,61 @@ TEST_F(CliTest, InfoDescribesAVolume) {
     EXPECT_NE(r.output.find("histogram"), std::string::npos) << r.output;
     CommandResult bad = run("info " + (m_dir / "nothing.nrrd").string());
     EXPECT_EQ(bad.code, 2);
+    EXPECT_EQ(r.output.find("space"), std::string::npos) << "no placement given: " << r.output;
+    // A placed volume: its space, origin and axes (j and k swapped here).
+    cutaway::Volume placed = p.values;
+    placed.space = cutaway::Space::LPS;
+    placed.origin = {10, -20, 30};
+    placed.direction = glm::dmat3(1, 0, 0, 0, 0, -1, 0, 1, 0);
+    cutaway::writeNrrd(m_dir / "placed.nrrd", placed);
+    CommandResult info = run("info " + (m_dir / "placed.nrrd").string());
+    ASSERT_EQ(info.code, 0) << info.output;
+    EXPECT_NE(info.output.find("space    LPS"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("origin   (10, -20, 30) mm"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("axis j   along (0, 0, -1)"), std::string::npos) << info.output;
+    EXPECT_NE(info.output.find("axis k   along (0, 1, 0)"), std::string::npos) << info.output;
+}
+
+// `export` takes its folder and frame as `render` does: a missing folder is
+// made, a bad frame number is named, a frame outside the animation warned of.
+TEST_F(CliTest, ExportMakesItsFolderAndNamesABadFrame) {
+    const fs::path scene = write("scene.json", kSmallScene);
+    const fs::path out = m_dir / "new" / "deeper" / "x.nrrd";
+    CommandResult r = run("export " + scene.string() + " -o " + out.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::is_regular_file(out));
+    CommandResult negative = run("export " + scene.string() + " --frame -1 -o " + out.string());
+    EXPECT_EQ(negative.code, 2) << negative.output;
+    EXPECT_NE(negative.output.find("--frame: expected one frame number >= 0, got \"-1\""),
+              std::string::npos)
+        << negative.output;
+    CommandResult beyond = run("export " + scene.string() + " --frame 7 -o " + out.string());
+    EXPECT_EQ(beyond.code, 0) << beyond.output;
+    EXPECT_NE(beyond.output.find("warning: --frame reaches outside"), std::string::npos)
+        << beyond.output;
+}
+
+// An operator whose box misses the volume renders (it is valid) but is
+// warned of once, naming it; one inside the volume is not; -q is silent.
+TEST_F(CliTest, AnOperatorOutsideTheVolumeIsWarnedOfOnce) {
+    const std::string text = R"({ "version": 1,
+      "volume": { "phantom": "orange", "size": [24, 24, 24] },
+      "render": { "size": [24, 24] },
+      "animation": { "frames": [0, 2] },
+      "operators": [
+        { "type": "dilator", "name": "lens", "placement": { "translate": [0, 0, 0], "scale": [6, 6, 6] } },
+        { "type": "retractor", "name": "far away", "placement": { "translate": [500, 0, 0], "scale": [10, 10, 10] } } ],
+      "output": { "pattern": "frames/o_####.exr" } })";
+    const fs::path scene = write("scene.json", text);
+    CommandResult r = run("render " + scene.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string warning =
+        "warning: " + scene.string() + ": /operators/1: \"far away\" lies outside the volume";
+    EXPECT_NE(r.output.find(warning), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find(warning), r.output.rfind(warning)) << "once, not per frame";
+    EXPECT_EQ(r.output.find("/operators/0"), std::string::npos) << r.output;
+    EXPECT_EQ(files(m_dir / "frames").size(), 3u);
+    CommandResult quiet = run("render " + scene.string() + " -q");
+    EXPECT_EQ(quiet.code, 0) << quiet.output;
+    EXPECT_TRUE(quiet.output.empty()) << quiet.output;
 }

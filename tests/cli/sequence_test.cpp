@@ -12,6 +12,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 
@@ -117,6 +118,42 @@ TEST_F(CliTest, FramesOptionSelectsARange) {
     EXPECT_EQ(runCutaway("render " + scene.string() + " --shard 3/3").code, 2);
 }
 
+// Output paths that would lose frames or replace something that is not a
+// file are refused before the device is opened, naming -o; nothing is
+// written, and what was there stays.
+TEST_F(CliTest, OutputPathsThatWouldLoseFramesAreRefusedBeforeRendering) {
+    const fs::path scene = write("turn.json", turntable());
+    const auto refused = [&](const std::string& args, const std::string& why) {
+        CommandResult r = runCutaway("render " + scene.string() + " " + args);
+        EXPECT_EQ(r.code, 2) << args << "\n" << r.output;
+        EXPECT_NE(r.output.find("-o "), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find(why), std::string::npos) << r.output;
+    };
+    // No frame number: six frames would each replace the one before.
+    refused("-o " + (m_dir / "all.exr").string(), "no frame number");
+    // The EXR named .png: its preview would replace it.
+    refused("--frames 0 --png -o " + (m_dir / "t_####.png").string(), "PNG preview");
+    // A named pipe (as a device such as /dev/null would be) is not replaced.
+    const fs::path pipe = m_dir / "p_0001.exr";
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    refused("--frames 0..2 -o " + (m_dir / "p_####.exr").string(), "not a regular file");
+    EXPECT_TRUE(fs::is_fifo(pipe));
+    EXPECT_EQ(files(m_dir), (std::vector<std::string>{"p_0001.exr", "turn.json"}));
+
+    // One frame needs no number; a link is written through.
+    CommandResult one =
+        runCutaway("render " + scene.string() + " --frames 3 -o " + (m_dir / "one.exr").string());
+    EXPECT_EQ(one.code, 0) << one.output;
+    EXPECT_EQ(readExrStringAttribute(m_dir / "one.exr", "cutaway/frame"), "3");
+    fs::create_directories(m_dir / "store");
+    fs::create_symlink(m_dir / "store" / "real.exr", m_dir / "link_0000.exr");
+    CommandResult link = runCutaway("render " + scene.string() + " --frames 0 -o " +
+                                    (m_dir / "link_####.exr").string());
+    EXPECT_EQ(link.code, 0) << link.output;
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(m_dir / "link_0000.exr")));
+    EXPECT_EQ(readExrStringAttribute(m_dir / "store" / "real.exr", "cutaway/frame"), "0");
+}
+
 TEST_F(CliTest, InterruptedSequenceLeavesOnlyWholeFrames) {
     const fs::path scene = write("long.json", turntable(399, 48, 96));
     // A signal after a second, mid-sequence (frame n may be being written
@@ -165,7 +202,8 @@ TEST_F(CliTest, ASecondSignalEndsTheRunAtOnceLeavingNoTemporaries) {
 
 TEST_F(CliTest, AFullDiskStopsTheRunKeepingFinishedFramesWhole) {
     // A 40 KiB tmpfs (mounted in a user and mount namespace of its own, so no
-    // root is needed) holds a few 96^2 frames of the sequence's 20.
+    // root is needed) holds a few 96^2 frames of the sequence's 20, each an
+    // EXR and its PNG preview: both or neither.
     if (runProgram("unshare", "-rm true").code != 0)
         GTEST_SKIP() << "needs unshare -rm (user and mount namespaces) to mount a small tmpfs";
     const fs::path scene = write("turn.json", turntable(19, 24, 96));
@@ -175,25 +213,47 @@ TEST_F(CliTest, AFullDiskStopsTheRunKeepingFinishedFramesWhole) {
     // The tmpfs vanishes with the namespace: its files are copied out first.
     const std::string script = "mount -t tmpfs -o size=40k tmpfs " + disk.string() + " && " +
                                CUTAWAY_BINARY + " render " + scene.string() + " -o " +
-                               (disk / "t_####.exr").string() + "; rc=$?; cp -a " + disk.string() +
-                               "/. " + kept.string() + "; exit $rc";
+                               (disk / "t_####.exr").string() + " --png; rc=$?; cp -a " +
+                               disk.string() + "/. " + kept.string() + "; exit $rc";
     CommandResult r = runProgram("unshare", "-rm sh -c '" + script + "'");
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("stopped: a frame could not be written"), std::string::npos)
         << r.output;
-    const auto names = files(kept);
+    std::vector<std::string> names, previews;
+    for (const std::string& name : files(kept))
+        (fs::path(name).extension() == ".png" ? previews : names).push_back(name);
     ASSERT_GE(names.size(), 1u) << r.output;
     ASSERT_LT(names.size(), 20u) << "the disk did not fill up";
     EXPECT_EQ(names, frameNames(0, static_cast<int>(names.size()) - 1)) << "a gap or a stray file";
-    for (const std::string& name : names)
+    for (const std::string& name : names) {
         EXPECT_EQ(readExr(kept / name).width, 96) << name;
+        EXPECT_TRUE(std::count(previews.begin(), previews.end(),
+                               fs::path(name).replace_extension(".png").string()))
+            << name << " without its preview";
+    }
+    EXPECT_EQ(previews.size(), names.size()) << "a preview without its EXR";
     // The run stopped at the frame that did not fit: one failure reported.
     const std::string failed = "frame " + std::to_string(names.size()) + " failed";
     EXPECT_NE(r.output.find(failed), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("frame " + std::to_string(names.size() + 1) + " failed"),
               std::string::npos)
         << r.output;
+}
+
+// A frame whose preview cannot be written leaves no EXR either: its files
+// are both there or neither, so --skip-existing renders it again. (The
+// preview's path is a link into a folder that does not exist.)
+TEST_F(CliTest, AFrameWhosePreviewFailsLeavesNoExr) {
+    const fs::path scene = write("turn.json", turntable());
+    fs::create_symlink(m_dir / "nowhere" / "t.png", m_dir / "t_0001.png");
+    CommandResult r = runCutaway("render " + scene.string() + " --frames 0..2 --png -o " +
+                                 (m_dir / "t_####.exr").string());
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("frame 1 failed"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("t_0001.png"), std::string::npos) << r.output;
+    EXPECT_EQ(files(m_dir),
+              (std::vector<std::string>{"t_0000.exr", "t_0000.png", "t_0001.png", "turn.json"}));
 }
 
 TEST_F(CliTest, AFailedFrameDoesNotStopTheOthersUnlessFailFast) {
@@ -208,6 +268,10 @@ TEST_F(CliTest, AFailedFrameDoesNotStopTheOthersUnlessFailFast) {
     EXPECT_EQ(r.code, 2) << r.output;
     EXPECT_NE(r.output.find("frame 4 failed"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("(frame 4): /camera/fov"), std::string::npos) << r.output;
+    // The file is named once, though its absolute path starts like a pointer.
+    const std::string line = r.output.substr(r.output.find("frame 4 failed"));
+    const std::string once = line.substr(0, line.find('\n'));
+    EXPECT_EQ(once.find(scene.string()), once.rfind(scene.string())) << once;
     EXPECT_EQ(files(m_dir / "frames"), frameNames(0, 3));
 
     fs::remove_all(m_dir / "frames");
@@ -259,7 +323,11 @@ TEST_F(CliTest, ValidateChecksEveryFrame) {
         "keys": [ { "frame": 0, "value": 100 }, { "frame": 5, "value": 200 } ] } ] } })");
     CommandResult r = runCutaway("validate " + scene.string());
     EXPECT_EQ(r.code, 2) << r.output;
+    // Both failing frames, not only the first.
     EXPECT_NE(r.output.find("(frame 4): /camera/fov"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(frame 5): /camera/fov"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("(frame 3)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("2 of 6 frames are not valid"), std::string::npos) << r.output;
 }
 
 // Every scene in scenes/ renders at a small size (real scans: skipped when

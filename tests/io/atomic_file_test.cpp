@@ -8,7 +8,9 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
+#include <utility>
 
 namespace cutaway {
 namespace {
@@ -111,18 +113,70 @@ TEST(AtomicFile, ThrowingWriterKeepsTheOldTarget) {
     EXPECT_EQ(dir.list(), std::vector<std::string>{"out.exr"});
 }
 
-TEST(AtomicFile, FailedRenameThrowsAndRemovesTheTemporary) {
+TEST(AtomicFile, FailedRenameThrowsNamingTheTarget) {
     TempDir dir;
-    const fs::path target = dir / "taken";
-    fs::create_directories(target / "child"); // a non-empty folder cannot be renamed over
-    try {
-        writeAtomically(target, [&](const fs::path& tmp) { writeText(tmp, "data"); });
+    const fs::path target = dir / "out.exr";
+    try { // a writer that leaves no temporary: there is nothing to rename
+        writeAtomically(target, [&](const fs::path&) {});
         FAIL() << "expected RuntimeError";
     } catch (const RuntimeError& e) {
         EXPECT_NE(std::string(e.what()).find(target.string()), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("renaming"), std::string::npos) << e.what();
     }
-    EXPECT_EQ(dir.list(), std::vector<std::string>{"taken"});
-    EXPECT_TRUE(fs::is_directory(target / "child"));
+    EXPECT_TRUE(dir.list().empty());
+}
+
+// The rename would put a regular file in place of whatever has the name: as
+// root, `-o /dev/null` replaced the system's /dev/null. Such targets are
+// refused before anything is written. (A named pipe stands in for a device
+// here, so that a broken check cannot damage the machine running the test.)
+TEST(AtomicFile, RefusesToReplaceWhatIsNotARegularFile) {
+    TempDir dir;
+    const fs::path folder = dir / "taken";
+    fs::create_directories(folder / "child");
+    const fs::path pipe = dir / "frame_0000.exr";
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    for (const auto& [target, what] : {std::pair{folder, "a folder"}, {pipe, "a named pipe"}}) {
+        bool called = false;
+        try {
+            writeAtomically(target, [&](const fs::path& tmp) {
+                called = true;
+                writeText(tmp, "data");
+            });
+            ADD_FAILURE() << "expected InputError for " << target;
+        } catch (const InputError& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(target.string()), std::string::npos) << message;
+            EXPECT_NE(message.find(what), std::string::npos) << message;
+        }
+        EXPECT_FALSE(called) << target;
+    }
+    EXPECT_TRUE(fs::is_directory(folder / "child"));
+    EXPECT_TRUE(fs::is_fifo(pipe));
+    EXPECT_EQ(dir.list(), (std::vector<std::string>{"frame_0000.exr", "taken"}));
+}
+
+// A link is written through: the file it names gets the new content and the
+// link stays a link (a link to a pipe is refused like the pipe).
+TEST(AtomicFile, WritesThroughASymbolicLink) {
+    TempDir dir;
+    fs::create_directories(dir / "store");
+    const fs::path real = dir / "store" / "frame.exr";
+    writeText(real, "old");
+    const fs::path link = dir / "frame.exr";
+    fs::create_symlink(real, link);
+    writeAtomically(link, [&](const fs::path& tmp) { writeText(tmp, "new"); });
+    EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+    EXPECT_EQ(readText(real), "new");
+    EXPECT_EQ(dir.list(), (std::vector<std::string>{"frame.exr", "store"}));
+
+    const fs::path pipe = dir / "store" / "pipe";
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    fs::create_symlink(pipe, dir / "to_pipe.exr");
+    EXPECT_THROW(
+        writeAtomically(dir / "to_pipe.exr", [&](const fs::path& tmp) { writeText(tmp, "x"); }),
+        InputError);
+    EXPECT_TRUE(fs::is_fifo(pipe));
 }
 
 TEST(AtomicFile, TemporariesInFlightCanBeRemovedAtOnce) {

@@ -48,6 +48,11 @@ TEST(JsonText, EditDistanceAndSuggestions) {
     EXPECT_EQ(editDistance("fovv", "fov"), 1u);
     EXPECT_EQ(editDistance("kitten", "sitting"), 3u);
     EXPECT_EQ(editDistance("", "abc"), 3u);
+    // A swap of neighbours is one edit (two for Levenshtein): the commonest typo.
+    EXPECT_EQ(editDistance("szie", "size"), 1u);
+    EXPECT_EQ(editDistance("ca", "abc"), 3u); // no substring is edited twice
+    EXPECT_EQ(closestMatch("szie", {"spacing", "size", "window"}),
+              std::optional<std::string>("size"));
     const std::vector<std::string> keys = {"fov", "projection", "ortho_height", "orbit"};
     EXPECT_EQ(closestMatch("fovv", keys), "fov");
     EXPECT_EQ(closestMatch("FOV", keys), "fov");
