@@ -16,6 +16,7 @@
 #include "interrupt.hpp"
 #include "job/export_volume.hpp"
 #include "job/render_job.hpp"
+#include "job/scene_check.hpp"
 #include "job/sequence.hpp"
 #include "progress.hpp"
 #include "scene/animation.hpp"
@@ -271,14 +272,16 @@ int main(int argc, char** argv) {
             const auto& a = scene.animation;
             // Every frame is checked; the first few failures are shown.
             std::vector<std::string> failures;
+            std::vector<cutaway::Scene> frames;
             int failed = 0;
             for (int f = a.firstFrame; f <= a.lastFrame && !a.tracks.empty(); ++f) {
                 try {
-                    cutaway::sceneAtFrame(scene, f);
+                    frames.push_back(cutaway::sceneAtFrame(scene, f));
                 } catch (const cutaway::InputError& e) {
                     if (++failed <= 5) failures.push_back(e.what());
                 }
             }
+            if (a.tracks.empty()) frames.push_back(scene);
             if (failed > 0) {
                 for (const std::string& failure : failures)
                     std::cerr << "cutaway: error: " << failure << "\n";
@@ -288,7 +291,9 @@ int main(int argc, char** argv) {
                           << " frames are not valid\n";
                 return kExitInput;
             }
-            cutaway::job::checkSceneMeshes(scene);
+            // The files, read as a render would read them.
+            for (const std::string& warning : cutaway::job::checkSceneFiles(frames))
+                std::cerr << "cutaway: warning: " << scene.file.string() << ": " << warning << "\n";
             std::printf("%s: valid (frames %d..%d)\n", validateScene.c_str(), a.firstFrame,
                         a.lastFrame);
             return 0;

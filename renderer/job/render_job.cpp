@@ -1,8 +1,7 @@
 #include "job/render_job.hpp"
 
 #include "core/error.hpp"
-#include "mesh/mesh.hpp"
-#include "operators/operator_geometry.hpp"
+#include "job/scene_check.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
 #include "volume/phantom.hpp"
@@ -204,11 +203,6 @@ void applyOverrides(Scene& scene, const RenderOverrides& overrides) {
     if (overrides.png) scene.output.png = true;
 }
 
-void checkSceneMeshes(const Scene& scene) {
-    for (const MeshSpec& mesh : scene.meshes)
-        mesh::loadGltf(mesh.file);
-}
-
 FrameRenderer::FrameRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx), m_renderer(ctx) {}
 
 Image FrameRenderer::render(const Scene& scene) {
@@ -254,17 +248,8 @@ Image FrameRenderer::render(const Scene& scene) {
 void FrameRenderer::warnOfOperatorsOutside(const Scene& scene) {
     // The operator's own box V_T (not where it moves material to): when it
     // misses the volume's box, nothing is cut, moved or kept.
-    const operators::WorldBox volume{glm::dmat4(1.0), {m_volume->box.lo, m_volume->box.hi}};
-    for (std::size_t i = 0; i < scene.operators.size(); ++i) {
-        const OperatorSpec& op = scene.operators[i];
-        if (m_warnedOutside.contains(i) ||
-            operators::intersects(operators::WorldBox{op.localToWorld, {}}, volume))
-            continue;
-        m_warnedOutside.insert(i);
-        m_warnings.push_back("/operators/" + std::to_string(i) + ": \"" + op.name +
-                             "\" lies outside the volume, so it changes nothing; "
-                             "placements are in mm with the volume's centre at the origin");
-    }
+    for (OperatorOutside& o : operatorsOutside(scene, m_volume->box.lo, m_volume->box.hi))
+        if (m_warnedOutside.insert(o.index).second) m_warnings.push_back(std::move(o.message));
 }
 
 Image renderImage(const gpu::Context& ctx, const Scene& scene) {

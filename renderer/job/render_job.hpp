@@ -36,10 +36,6 @@ Volume loadSceneVolume(const Scene& scene);
 std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene,
                                               const std::shared_ptr<const Volume>& scan);
 
-/// Reads every glTF model of /meshes once, as rendering would, so that
-/// `cutaway validate` reports a bad model (InputError naming the file).
-void checkSceneMeshes(const Scene& scene);
-
 /// The value window: the scene's, else the volume's value range (a flat
 /// volume gets a window of width 1 so normalization stays defined).
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);

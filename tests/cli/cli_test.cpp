@@ -229,4 +229,10 @@ TEST_F(CliTest, AnOperatorOutsideTheVolumeIsWarnedOfOnce) {
     CommandResult quiet = run("render " + scene.string() + " -q");
     EXPECT_EQ(quiet.code, 0) << quiet.output;
     EXPECT_TRUE(quiet.output.empty()) << quiet.output;
+    // validate gives the same warning, once, and still passes the scene.
+    CommandResult v = run("validate " + scene.string());
+    EXPECT_EQ(v.code, 0) << v.output;
+    EXPECT_NE(v.output.find(warning), std::string::npos) << v.output;
+    EXPECT_EQ(v.output.find(warning), v.output.rfind(warning)) << "once, not per frame";
+    EXPECT_EQ(v.output.find("/operators/0"), std::string::npos) << v.output;
 }

@@ -102,6 +102,38 @@ TEST_F(LabelsCli, LabelsOnAnotherGridAreBadInputNamingTheFile) {
     EXPECT_NE(r.output.find("grid"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("24 x 24 x 20"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(m_dir / "frames")) << "nothing may be written";
+    // validate reads the files too, and refuses them the same way.
+    const CommandResult v = runCutaway("validate " + scene.string());
+    EXPECT_EQ(v.code, 2) << v.output;
+    EXPECT_NE(v.output.find(labels.string() + ": the label volume's grid is 24 x 24 x 20"),
+              std::string::npos)
+        << v.output;
+}
+
+// validate reads what a render reads: a label file on the scan's grid passes,
+// negative ids do not, and a volume file that cannot be read is named.
+TEST_F(LabelsCli, ValidateReadsTheVolumeAndLabelFiles) {
+    const fs::path scan = writeScan();
+    writeLabels(labelVolume(glm::ivec3(kScanSide), VoxelType::I16, glm::dvec3(1.0),
+                            [](int x, int y, int z) { return shellAndCore(x, y, z); }));
+    const fs::path scene = writeScene();
+    const CommandResult good = runCutaway("validate " + scene.string());
+    EXPECT_EQ(good.code, 0) << good.output;
+    const fs::path labels =
+        writeLabels(labelVolume(glm::ivec3(kScanSide), VoxelType::I16, glm::dvec3(1.0),
+                                [](int x, int, int) { return x == 3 ? -1.0 : 1000.0; }));
+    const CommandResult negative = runCutaway("validate " + scene.string());
+    EXPECT_EQ(negative.code, 2) << negative.output;
+    EXPECT_NE(negative.output.find(labels.string() + ": label ids must not be negative"),
+              std::string::npos)
+        << negative.output;
+    // A scan cut short: its header promises more voxels than the file holds.
+    const auto size = fs::file_size(scan);
+    fs::resize_file(scan, size - 1000);
+    const CommandResult cut = runCutaway("validate " + scene.string());
+    EXPECT_EQ(cut.code, 2) << cut.output;
+    EXPECT_NE(cut.output.find(scan.string()), std::string::npos) << cut.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames")) << "validate writes nothing";
 }
 
 TEST_F(LabelsCli, LabelsWithAnotherSpacingAreBadInputNamingTheFile) {
