@@ -57,6 +57,14 @@ std::string formatNumber(double value) {
     if (std::isnan(value)) return "nan";
     if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
     std::array<char, 64> buffer{};
+    // A value that needs more than 15 significant digits is arithmetic's
+    // (an animation's interpolation, a unit conversion), not the user's text:
+    // 1.3738400000000002 is shown as 1.37384.
+    const auto rounded = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                       std::chars_format::general, 15);
+    double back = 0.0;
+    std::from_chars(buffer.data(), rounded.ptr, back);
+    if (back != value) return std::string(buffer.data(), rounded.ptr);
     // Plain digits for everyday magnitudes ("1000000", not "1e+06"); exponents otherwise.
     const double magnitude = std::abs(value);
     const bool plain = magnitude == 0.0 || (magnitude >= 1.0e-4 && magnitude < 1.0e15);
@@ -67,7 +75,9 @@ std::string formatNumber(double value) {
 }
 
 std::string describeValue(const nlohmann::json& value, std::size_t maxChars) {
-    std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    std::string text = value.is_number_float()
+                           ? formatNumber(value.get<double>())
+                           : value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     if (text.size() > maxChars && maxChars > 3) {
         text.resize(maxChars - 3);
         // Do not cut a UTF-8 sequence in half.

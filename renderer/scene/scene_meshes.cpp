@@ -1,6 +1,7 @@
 #include "scene/scene_sections.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 
 namespace cutaway::scene_detail {
 namespace {
@@ -58,10 +59,14 @@ void parseMeshes(JsonReader& root, std::vector<MeshSpec>& meshes, std::size_t op
         mesh.color = r.colour("color");
         if (r.has("attach")) {
             const auto limit = static_cast<std::int64_t>(operatorCount);
-            if (operatorCount == 0)
-                r.error("attach", "there are no operators to attach to");
-            else if (const auto i = r.integer("attach", {0, limit - 1}))
+            // Without operators, an index of the right type is still wrong;
+            // one of the wrong type is reported as such.
+            if (operatorCount == 0) {
+                if (r.integer("attach", {0, std::numeric_limits<std::int32_t>::max()}))
+                    r.error("attach", "there are no operators to attach to");
+            } else if (const auto i = r.integer("attach", {0, limit - 1})) {
                 mesh.attach = static_cast<int>(*i);
+            }
         }
         meshes.push_back(mesh);
     });

@@ -15,6 +15,15 @@ TEST(JsonText, FormatsNumbersShortest) {
     EXPECT_EQ(formatNumber(10000.0), "10000");
     EXPECT_EQ(formatNumber(-90.0), "-90");
     EXPECT_EQ(formatNumber(1.0e30), "1e+30");
+    // Arithmetic's noise past 15 significant digits is not shown; a value
+    // the user could have typed keeps every digit.
+    EXPECT_EQ(formatNumber(1.37384 + 2.3e-16), "1.37384");
+    EXPECT_EQ(formatNumber(0.1 + 0.2), "0.3");
+    EXPECT_EQ(formatNumber(1.0000000000001), "1.0000000000001");
+    EXPECT_EQ(formatNumber(123456.789012345), "123456.789012345");
+    EXPECT_EQ(describeValue(nlohmann::json(0.1 + 0.2)), "0.3");
+    EXPECT_EQ(describeValue(nlohmann::json(2.5)), "2.5");
+    EXPECT_EQ(describeValue(nlohmann::json(7)), "7");
 }
 
 TEST(JsonText, DescribesRanges) {

@@ -65,6 +65,8 @@ TEST_F(MeshScene, BadMeshesAreReportedWithTheirPointers) {
               "scene.json: /meshes/0/attach: expected an integer in [0, 0], got 1");
     EXPECT_EQ(error(withMeshes(R"([{"file": "tool.glb", "attach": 0}])", false)),
               "scene.json: /meshes/0/attach: there are no operators to attach to");
+    EXPECT_EQ(error(withMeshes(R"([{"file": "tool.glb", "attach": "x"}])", false)),
+              "scene.json: /meshes/0/attach: expected an integer in [0, 2147483647], got \"x\"");
     EXPECT_EQ(error(withMeshes(R"([{"file": "tool.obj"}])")),
               "scene.json: /meshes/0/file: expected a glTF 2.0 model (.gltf or .glb), got "
               "\"tool.obj\"");
