@@ -34,7 +34,7 @@ gpu::Image OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 l
     push.mapHi = glm::vec4(hi, 0.0f);
     push.dims = dims;
     gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &push,
-                          sizeof(push), glm::uvec3(4, 4, 4));
+                          sizeof(push), glm::uvec3(8, 8, 4));
     return out;
 }
 
