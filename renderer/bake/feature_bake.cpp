@@ -210,9 +210,25 @@ FeatureBaker::FeatureBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     };
     m_lines = make(edt_lines_comp_spv, sizeof(edt_lines_comp_spv));
     m_envelope = make(edt_envelope_comp_spv, sizeof(edt_envelope_comp_spv));
-    m_blur = make(mask_blur_comp_spv, sizeof(mask_blur_comp_spv));
+    m_blurModule = gpu::createShaderModule(ctx, mask_blur_comp_spv, sizeof(mask_blur_comp_spv));
     m_finish = make(field_finish_comp_spv, sizeof(field_finish_comp_spv));
     m_sampler = gpu::createLinearSampler(ctx);
+}
+
+VkPipeline FeatureBaker::blurPipeline(int radius) const {
+    static_assert(kBlurWindows.back() == shader::kBlurMaxRadius, "every radius needs a window");
+    // Made when first needed: the window of 65 registers compiles in about 20 ms.
+    std::size_t k = 0;
+    while (k + 1 < kBlurWindows.size() && radius > kBlurWindows[k])
+        ++k;
+    if (!m_blurWindow[k]) {
+        const VkSpecializationMapEntry entry{0, 0, sizeof(int32_t)};
+        const int32_t window = kBlurWindows[k];
+        const VkSpecializationInfo info{1, &entry, sizeof window, &window};
+        m_blurWindow[k] =
+            gpu::createComputePipeline(m_ctx, m_layout.get(), m_blurModule.get(), &info);
+    }
+    return m_blurWindow[k].get();
 }
 
 gpu::DescriptorSet FeatureBaker::makeSet(const gpu::Image& texture, const gpu::Image& src,
@@ -300,7 +316,7 @@ gpu::Image FeatureBaker::segmentMask(const gpu::Image& texture, glm::dvec3 spaci
         p.sigma = blur.sigma;
         p.radius = blur.radius;
         p.mode = axis == 0 ? 1 : 0;
-        passes.push_back({m_blur.get(), set.set, p, lineGroups[axis]});
+        passes.push_back({blurPipeline(blur.radius), set.set, p, lineGroups[axis]});
     }
     shader::FeatureBakeParams p = baseParams(dims, spacing);
     p.mode = 1;

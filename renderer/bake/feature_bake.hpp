@@ -14,6 +14,7 @@
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
 
+#include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
@@ -51,6 +52,10 @@ public:
     gpu::Image segmentMask(const gpu::Image& indicator, glm::dvec3 spacing, double bandMm) const;
 
 private:
+    /// mask_blur's windows (its taps live in registers): a pipeline per
+    /// size, for radii up to each (voxels), the last kBlurMaxRadius.
+    static constexpr std::array<int, 4> kBlurWindows{4, 8, 16, 32};
+    VkPipeline blurPipeline(int radius) const;
     /// A set with every binding written: 0 `texture` (sampled), 1 `src`, 2 `dst`
     /// and 3 `out` (r16f storage, may be one image), all but `texture` in GENERAL.
     gpu::DescriptorSet makeSet(const gpu::Image& texture, const gpu::Image& src,
@@ -61,7 +66,8 @@ private:
     gpu::PipelineLayoutHandle m_layout;
     gpu::PipelineHandle m_lines;
     gpu::PipelineHandle m_envelope;
-    gpu::PipelineHandle m_blur;
+    gpu::ShaderModuleHandle m_blurModule;
+    mutable std::array<gpu::PipelineHandle, kBlurWindows.size()> m_blurWindow; ///< made when needed
     gpu::PipelineHandle m_finish;
     gpu::SamplerHandle m_sampler;
 };
