@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "gpu/check.hpp"
+#include "operators/operator_geometry.hpp"
 #include "render/classification_upload.hpp"
 #include "render/occupancy.hpp"
 #include "render/preintegration.hpp"
@@ -299,14 +300,26 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const int width = scene.render.width, height = scene.render.height;
     m_operators->update(scene.operators, volume);
     if (m_regions.size() > scene.operators.size()) m_regions.resize(scene.operators.size());
-    Box bounds = volume.box; // the camera frames the operators too: a flap may leave the box
+    // What the frame holds: the volume, and the deformed boxes of the
+    // operators that reach it (a flap may leave the volume's box; an operator
+    // whose own box misses the volume moves nothing and holds nothing). The
+    // camera frames the volume alone, so that an operator moving through a
+    // sequence does not move the camera; its depth range covers the rest.
+    const operators::WorldBox volumeBox{glm::dmat4(1.0), {volume.box.lo, volume.box.hi}};
+    Box bounds = volume.box;
     for (const auto& op : m_operators->operators()) {
+        if (!operators::intersects(operators::WorldBox{op->spec.localToWorld, {}}, volumeBox))
+            continue;
         bounds.lo = glm::min(bounds.lo, op->box.lo());
         bounds.hi = glm::max(bounds.hi, op->box.hi());
     }
     const std::optional<Box> meshBounds = m_meshes->prepare(scene, 2.0 * volume.box.radius());
-    const CameraMatrices cam =
-        computeCamera(scene.camera, bounds, width, height, meshBounds ? &*meshBounds : nullptr);
+    Box inDepth = bounds;
+    if (meshBounds) {
+        inDepth.lo = glm::min(inDepth.lo, meshBounds->lo);
+        inDepth.hi = glm::max(inDepth.hi, meshBounds->hi);
+    }
+    const CameraMatrices cam = computeCamera(scene.camera, volume.box, width, height, &inDepth);
     const double sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
     // Proxies: each operator's deformed box, then the volume (the background).
     // An operator's box is a stencil-only proxy, its shader runs on its regions.

@@ -7,6 +7,7 @@
 #include "render/camera.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
+#include "scene/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -190,6 +191,34 @@ TEST_F(GpuTest, OrthographicAndPerspectiveBothFrameTheVolume) {
         Image img = renderScene(ctx(), scene);
         EXPECT_EQ(alphaAt(img, 0, 0), 0.0f);
         EXPECT_GT(alphaAt(img, 24, 24), 0.5f);
+    }
+}
+
+// The default camera (distance 0) fits the volume, not the operators: an
+// operator that moves through a sequence must not zoom the view. A pliers
+// without displacement changes nothing, wherever it is, inside the volume or
+// far outside it; each frame equals the render without it.
+TEST_F(GpuTest, TheDefaultFramingDoesNotFollowTheOperators) {
+    const auto scene = [](const std::string& operators) {
+        return parseScene(nlohmann::json::parse(R"({ "version": 1,
+            "volume": { "phantom": "head", "size": [32, 32, 32] },
+            "render": { "size": [40, 40], "background": "transparent" },
+            "operators": )" + operators + "}"),
+                          "/nonexistent", "test");
+    };
+    const Image plain = renderScene(ctx(), scene("[]"));
+    double coverage = 0.0;
+    for (std::size_t i = 3; i < plain.rgba.size(); i += 4)
+        coverage += plain.rgba[i];
+    ASSERT_GT(coverage, 100.0);
+    for (const char* at : {"[0, 0, 0]", "[30, 0, 20]", "[0, 0, 90]", "[4000, 0, 0]"}) {
+        SCOPED_TRACE(at);
+        const Image still = renderScene(
+            ctx(),
+            scene(std::string(R"([{ "type": "pliers", "placement": { "translate": )") + at +
+                  R"(, "scale": [20, 20, 20] }, "params": { "displacement": [0, 0, 0] } }])"));
+        const ImageDiff d = compareImages(plain, still);
+        EXPECT_LT(d.maxAbs, 2e-3f) << "rms " << d.rms;
     }
 }
 
