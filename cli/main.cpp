@@ -76,15 +76,17 @@ void warnOutsideAnimation(const cutaway::Scene& scene, int first, int last, cons
     const auto& a = scene.animation;
     if (first >= a.firstFrame && last <= a.lastFrame) return;
     std::fprintf(stderr,
-                 "cutaway: warning: %s reaches outside the scene's /animation/frames %d..%d; "
-                 "there every track holds its nearest key\n",
-                 option, a.firstFrame, a.lastFrame);
+                 "cutaway: warning: %s reaches outside the scene's /animation/frames %d..%d; %s\n",
+                 option, a.firstFrame, a.lastFrame,
+                 a.tracks.empty() ? "the scene has no tracks, so every frame is the same"
+                                  : "there every track holds its nearest key");
 }
 
 int parseFrame(const std::string& text) {
     static const std::regex number("[0-9]{1,7}");
-    if (!std::regex_match(text, number))
-        throw cutaway::InputError("--frame: expected one frame number >= 0, got \"" + text + "\"");
+    if (!std::regex_match(text, number) || std::stoi(text) > cutaway::kMaxFrame)
+        throw cutaway::InputError("--frame: expected one frame number in [0, " +
+                                  std::to_string(cutaway::kMaxFrame) + "], got \"" + text + "\"");
     return std::stoi(text);
 }
 

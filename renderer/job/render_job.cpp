@@ -170,22 +170,45 @@ std::vector<OperatorSpec> liveOperators(const Scene& scene) {
     return {scene.operators.back()};
 }
 
-std::string expandPattern(const std::string& pattern, int frame) {
+namespace {
+
+const std::regex& hashRun() {
     static const std::regex hashes("#+");
+    return hashes;
+}
+
+const std::regex& printfNumber() {
     static const std::regex printfStyle("%(0?)([0-9]*)d");
+    return printfStyle;
+}
+
+// `frame` in decimal, padded to `width` with zeros or spaces (any width).
+std::string padded(int frame, std::size_t width, char fill) {
+    std::string digits = std::to_string(frame);
+    if (digits.size() < width) digits.insert(0, width - digits.size(), fill);
+    return digits;
+}
+
+} // namespace
+
+std::string expandPattern(const std::string& pattern, int frame) {
     std::smatch m;
-    if (std::regex_search(pattern, m, hashes)) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%0*d", static_cast<int>(m.length(0)), frame);
-        return m.prefix().str() + buf + m.suffix().str();
-    }
-    if (std::regex_search(pattern, m, printfStyle)) {
-        const int width = m[2].length() ? std::stoi(m[2].str()) : 0;
-        char buf[32];
-        std::snprintf(buf, sizeof buf, m[1].length() ? "%0*d" : "%*d", width, frame);
-        return m.prefix().str() + buf + m.suffix().str();
+    if (std::regex_search(pattern, m, hashRun()))
+        return m.prefix().str() + padded(frame, std::size_t(m.length(0)), '0') + m.suffix().str();
+    if (std::regex_search(pattern, m, printfNumber())) {
+        const std::size_t width = m[2].length() ? std::stoul(m[2].str()) : 0;
+        return m.prefix().str() + padded(frame, width, m[1].length() ? '0' : ' ') +
+               m.suffix().str();
     }
     return pattern;
+}
+
+int framePlaceholders(const std::string& pattern) {
+    const auto count = [&](const std::regex& re) {
+        return static_cast<int>(
+            std::distance(std::sregex_iterator(pattern.begin(), pattern.end(), re), {}));
+    };
+    return count(hashRun()) + count(printfNumber());
 }
 
 std::filesystem::path previewPath(const std::filesystem::path& exrPath) {

@@ -67,9 +67,14 @@ std::string frameVolumeKey(const Scene& scene);
 /// under sequential composition only the last.
 std::vector<OperatorSpec> liveOperators(const Scene& scene);
 
-/// Expands "####" (any run of #) or "%0Nd" / "%d" in `pattern` with `frame`.
-/// A pattern without a placeholder is used as is.
+/// Expands "####" (any run of #) or "%0Nd" / "%d" in `pattern` with `frame`,
+/// padded to the run's length or N (any width). A pattern without a
+/// placeholder is used as is.
 std::string expandPattern(const std::string& pattern, int frame);
+
+/// How many frame-number placeholders `pattern` holds (runs of #, %d forms);
+/// a run of several frames needs exactly one.
+int framePlaceholders(const std::string& pattern);
 
 /// The PNG preview path that goes with an EXR path (same name, .png).
 std::filesystem::path previewPath(const std::filesystem::path& exrPath);

@@ -33,13 +33,14 @@ void createOutputFolder(const std::filesystem::path& file) {
 
 FrameRange parseFrameRange(const std::string& text) {
     static const std::regex range("([0-9]{1,7})(?:\\.\\.([0-9]{1,7}))?");
+    const std::string expected = "--frames: expected A..B or N with frame numbers in [0, " +
+                                 std::to_string(kMaxFrame) + "], got \"" + text + "\"";
     std::smatch m;
-    if (!std::regex_match(text, m, range))
-        throw InputError("--frames: expected A..B or N with frame numbers >= 0, got \"" + text +
-                         "\"");
+    if (!std::regex_match(text, m, range)) throw InputError(expected);
     FrameRange r;
     r.first = std::stoi(m[1].str());
     r.last = m[2].matched ? std::stoi(m[2].str()) : r.first;
+    if (r.first > kMaxFrame || r.last > kMaxFrame) throw InputError(expected);
     if (r.first > r.last) throw InputError("--frames: expected A <= B, got \"" + text + "\"");
     return r;
 }
@@ -73,11 +74,18 @@ void checkOutputPaths(const Scene& scene, const SequenceOptions& options) {
     const std::string where = options.overrides.outputPattern
                                   ? "-o " + pattern
                                   : file + "/output/pattern \"" + pattern + "\"";
-    if (frames.size() > 1 &&
-        expandPattern(pattern, frames.front()) == expandPattern(pattern, frames.back()))
+    // Judged on the whole run, every shard's frames: a shard of one frame
+    // with a fixed name would still replace the other shards' files.
+    SequenceOptions whole = options;
+    whole.shard = Shard{};
+    const std::size_t runFrames = framesToRender(scene, whole).size();
+    const int placeholders = framePlaceholders(pattern);
+    if (runFrames > 1 && placeholders == 0)
         throw InputError(where + ": no frame number (#### or %04d) in a run of " +
-                         std::to_string(frames.size()) +
-                         " frames; each frame would replace the last");
+                         std::to_string(runFrames) + " frames; each frame would replace the last");
+    if (placeholders > 1)
+        throw InputError(where + ": " + std::to_string(placeholders) +
+                         " frame numbers (runs of # or %d); give exactly one");
     for (const int frame : frames) {
         const std::filesystem::path exr = expandPattern(pattern, frame);
         if (png && previewPath(exr) == exr)
@@ -108,6 +116,18 @@ struct PendingWrite {
     double renderSeconds = 0.0;
     std::future<double> writeSeconds;
 };
+
+// What a frame's header records as its scene: the document of this frame,
+// tracks applied and /animation left out (the frame is in cutaway/frame), at
+// the size it was rendered. Rendered on its own, it gives the same image.
+nlohmann::json recordedScene(const Scene& frame) {
+    nlohmann::json document = frame.document;
+    if (document.is_object()) {
+        document.erase("animation");
+        document["render"]["size"] = {frame.render.width, frame.render.height};
+    }
+    return document;
+}
 
 ExrCompression exrCompression(Compression compression) {
     switch (compression) {
@@ -233,7 +253,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             exr.attributes = {{"cutaway/frame", std::to_string(event.frame)},
                               {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
                               {"cutaway/version", CUTAWAY_VERSION},
-                              {"cutaway/scene", frameScene.document.dump()}};
+                              {"cutaway/scene", recordedScene(frameScene).dump()}};
             for (std::size_t n = 0; n < event.notes.size(); ++n)
                 exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
             pending = startWrite(std::move(event), renderSeconds, std::move(image), std::move(exr));

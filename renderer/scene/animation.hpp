@@ -30,7 +30,9 @@ std::string pointerWriteProblem(const nlohmann::json& document, const std::strin
 SceneSetting parseSetting(const std::string& assignment);
 
 /// Writes each setting into `document`; throws InputError naming the setting
-/// when its pointer cannot be written.
+/// when its pointer cannot be written. A setting wins over the tracks of
+/// /animation that would write the same value (a track whose target is the
+/// setting's pointer, lies inside it or holds it): they are removed.
 void applySettings(nlohmann::json& document, const std::vector<SceneSetting>& settings);
 
 /// The scene of frame `frame`: tracks applied, parsed and validated. Messages

@@ -170,6 +170,9 @@ struct Track {
     std::vector<Keyframe> keys; ///< strictly increasing frames, all values of one shape
 };
 
+/// The largest frame number a scene or the command line may name.
+inline constexpr int kMaxFrame = 1000000;
+
 /// /animation: the frames of a sequence and the tracks that change between them.
 struct Animation {
     int firstFrame = 0; ///< /animation/frames[0]

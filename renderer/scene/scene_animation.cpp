@@ -32,7 +32,7 @@ std::string frameText(double frame) {
 ///      * value      number, or an array of 1 to 16 numbers (a vector); every key
 ///                   of a track has the same shape
 void parseAnimation(JsonReader& reader, Animation& animation) {
-    if (const auto frames = reader.integers("frames", 2, 2, 0, 1000000)) {
+    if (const auto frames = reader.integers("frames", 2, 2, 0, kMaxFrame)) {
         animation.firstFrame = static_cast<int>((*frames)[0]);
         animation.lastFrame = static_cast<int>((*frames)[1]);
         if (animation.firstFrame > animation.lastFrame)

@@ -129,8 +129,13 @@ TEST_F(CliTest, OutputPathsThatWouldLoseFramesAreRefusedBeforeRendering) {
         EXPECT_NE(r.output.find("-o "), std::string::npos) << r.output;
         EXPECT_NE(r.output.find(why), std::string::npos) << r.output;
     };
-    // No frame number: six frames would each replace the one before.
+    // No frame number: six frames would each replace the one before; also
+    // when each shard renders one frame (shards share the folder).
     refused("-o " + (m_dir / "all.exr").string(), "no frame number");
+    refused("--frames 0..1 --shard 1/2 -o " + (m_dir / "all.exr").string(), "no frame number");
+    // Two frame numbers: the second would stay literal.
+    refused("-o " + (m_dir / "take#/t_####.exr").string(), "2 frame numbers");
+    refused("-o " + (m_dir / "t_####_%04d.exr").string(), "2 frame numbers");
     // The EXR named .png: its preview would replace it.
     refused("--frames 0 --png -o " + (m_dir / "t_####.png").string(), "PNG preview");
     // A named pipe (as a device such as /dev/null would be) is not replaced.
@@ -152,6 +157,54 @@ TEST_F(CliTest, OutputPathsThatWouldLoseFramesAreRefusedBeforeRendering) {
     EXPECT_EQ(link.code, 0) << link.output;
     EXPECT_TRUE(fs::is_symlink(fs::symlink_status(m_dir / "link_0000.exr")));
     EXPECT_EQ(readExrStringAttribute(m_dir / "store" / "real.exr", "cutaway/frame"), "0");
+}
+
+// Frame numbers are padded to any width; none is cut short.
+TEST(Pattern, PadsFrameNumbersToAnyWidth) {
+    EXPECT_EQ(job::expandPattern("f_####.exr", 8), "f_0008.exr");
+    EXPECT_EQ(job::expandPattern("f_##.exr", 12345), "f_12345.exr");
+    EXPECT_EQ(job::expandPattern("f_%d.exr", 8), "f_8.exr");
+    EXPECT_EQ(job::expandPattern("f_%4d.exr", 8), "f_   8.exr");
+    EXPECT_EQ(job::expandPattern("g_%040d.exr", 9), "g_" + std::string(39, '0') + "9.exr");
+    EXPECT_EQ(job::expandPattern(std::string(40, '#'), 10), std::string(38, '0') + "10");
+    EXPECT_EQ(job::framePlaceholders("a/b.exr"), 0);
+    EXPECT_EQ(job::framePlaceholders("a/b_####.exr"), 1);
+    EXPECT_EQ(job::framePlaceholders("a#/b_%03d.exr"), 2);
+}
+
+// --set wins over a track of the same value; the header records the frame
+// as rendered: tracks applied, no /animation, the size of the image.
+TEST_F(CliTest, SetOverridesATrackAndTheHeaderRecordsTheFrameAsRendered) {
+    const fs::path scene = write("turn.json", turntable());
+    CommandResult r = runCutaway("render " + scene.string() +
+                                 " --frames 3 --size 24x20 --set /camera/orbit/azimuth=90");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const fs::path f3 = m_dir / "frames" / "t_0003.exr";
+    const auto recorded = nlohmann::json::parse(readExrStringAttribute(f3, "cutaway/scene"));
+    EXPECT_DOUBLE_EQ(recorded["camera"]["orbit"]["azimuth"].get<double>(), 90.0);
+    EXPECT_FALSE(recorded.contains("animation")) << recorded.dump();
+    EXPECT_EQ(recorded["render"]["size"], nlohmann::json::parse("[24, 20]"));
+    // The recorded scene renders the same image on its own.
+    const fs::path again = write("again.json", recorded.dump());
+    CommandResult a = runCutaway("render " + again.string() + " -o " + (m_dir / "a.exr").string());
+    ASSERT_EQ(a.code, 0) << a.output;
+    EXPECT_EQ(readExr(m_dir / "a.exr").rgba, readExr(f3).rgba);
+}
+
+// Frame numbers on the command line stop where a scene's do.
+TEST_F(CliTest, FrameNumbersPastTheLimitAreRefused) {
+    const fs::path scene = write("turn.json", turntable());
+    for (const char* args : {"render --frames 0..1000001", "render --frames 2147483647",
+                             "export --frame 1000001 -o x.nrrd"}) {
+        SCOPED_TRACE(args);
+        const std::string a(args);
+        const std::string command =
+            a.substr(0, a.find(' ')) + " " + scene.string() + a.substr(a.find(' '));
+        CommandResult r = runCutaway(command);
+        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_NE(r.output.find("[0, 1000000]"), std::string::npos) << r.output;
+    }
+    EXPECT_FALSE(fs::exists(m_dir / "frames"));
 }
 
 TEST_F(CliTest, InterruptedSequenceLeavesOnlyWholeFrames) {

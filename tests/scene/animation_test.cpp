@@ -195,4 +195,36 @@ TEST(Animation, IndicesNlohmannWouldMisreadAreRefused) {
     }
 }
 
+// A setting wins over the tracks that would write the same value, whether
+// their target is the setting's pointer, inside it or holds it; others stay.
+TEST(Animation, ASettingRemovesTheTracksOfItsValue) {
+    const auto tracks = [](const nlohmann::json& document) {
+        std::vector<std::string> targets;
+        for (const auto& t : document["animation"]["tracks"])
+            targets.push_back(t["target"]);
+        return targets;
+    };
+    const nlohmann::json doc = nlohmann::json::parse(R"({ "animation": { "tracks": [
+        { "target": "/camera/orbit/azimuth", "keys": [ { "frame": 0, "value": 1 } ] },
+        { "target": "/camera/orbit/target", "keys": [ { "frame": 0, "value": [0, 0, 0] } ] },
+        { "target": "/camera/fov", "keys": [ { "frame": 0, "value": 30 } ] },
+        { "target": "/camera/orbit/azimuthal", "keys": [ { "frame": 0, "value": 1 } ] } ] } })");
+    nlohmann::json a = doc;
+    applySettings(a, {{"/camera/orbit/azimuth", 90}});
+    EXPECT_EQ(a["camera"]["orbit"]["azimuth"], 90);
+    EXPECT_EQ(tracks(a), (std::vector<std::string>{"/camera/orbit/target", "/camera/fov",
+                                                   "/camera/orbit/azimuthal"}));
+    nlohmann::json b = doc;
+    applySettings(b, {{"/camera/orbit", nlohmann::json::object()}});
+    EXPECT_EQ(tracks(b), (std::vector<std::string>{"/camera/fov"}));
+    nlohmann::json c = doc;
+    c["camera"]["orbit"]["target"] = {0, 0, 0};
+    applySettings(c, {{"/camera/orbit/target/1", 5}});
+    EXPECT_EQ(tracks(c), (std::vector<std::string>{"/camera/orbit/azimuth", "/camera/fov",
+                                                   "/camera/orbit/azimuthal"}));
+    nlohmann::json d = doc; // a setting of the tracks themselves removes none
+    applySettings(d, {{"/animation/tracks/0/target", "/camera/fov"}});
+    EXPECT_EQ(tracks(d).size(), 4u);
+}
+
 } // namespace cutaway::test
