@@ -90,10 +90,9 @@ int parseFrame(const std::string& text) {
     return std::stoi(text);
 }
 
-int runRender(const RenderArgs& args) {
+// The run that render (and validate) arguments describe.
+cutaway::job::SequenceOptions runOptions(const RenderArgs& args, const cutaway::Scene& scene) {
     namespace job = cutaway::job;
-    // Everything about the input is checked before a device is opened.
-    const cutaway::Scene scene = cutaway::loadScene(args.scene, parseSettings(args.sets));
     job::SequenceOptions options;
     if (!args.output.empty()) options.overrides.outputPattern = args.output;
     if (!args.size.empty()) options.overrides.size = parseSize(args.size);
@@ -106,7 +105,14 @@ int runRender(const RenderArgs& args) {
     if (!args.shard.empty()) options.shard = job::parseShard(args.shard);
     options.skipExisting = args.skipExisting;
     options.failFast = args.failFast;
+    return options;
+}
 
+int runRender(const RenderArgs& args) {
+    namespace job = cutaway::job;
+    // Everything about the input is checked before a device is opened.
+    const cutaway::Scene scene = cutaway::loadScene(args.scene, parseSettings(args.sets));
+    job::SequenceOptions options = runOptions(args, scene);
     job::checkOutputPaths(scene, options);
 
     cutaway::cli::installInterruptHandlers();
@@ -198,6 +204,57 @@ int runExport(const ExportArgs& args) {
     return 0;
 }
 
+// Checks what `render` with the same arguments would refuse as bad input,
+// frame by frame, without a device: the scene, every frame's scene, the
+// output paths and the files the frames read.
+int runValidate(const RenderArgs& args) {
+    namespace job = cutaway::job;
+    const cutaway::Scene scene = cutaway::loadScene(args.scene, parseSettings(args.sets));
+    const job::SequenceOptions options = runOptions(args, scene);
+    job::checkOutputPaths(scene, options);
+    const std::vector<int> frames = job::framesToRender(scene, options);
+    job::SceneFileCheck check;
+    std::vector<std::string> failures; // the first few are shown
+    int failed = 0;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        // Without tracks every frame is the same scene: one check is all.
+        if (i > 0 && scene.animation.tracks.empty()) break;
+        try {
+            cutaway::Scene frame = cutaway::sceneAtFrame(scene, frames[i]);
+            job::applyOverrides(frame, options.overrides);
+            try {
+                check.frame(frame);
+            } catch (const cutaway::InputError& e) {
+                const std::string what = e.what();
+                // A JSON pointer is a place in the scene file: name the file too.
+                throw cutaway::InputError(what.starts_with('/')
+                                              ? args.scene + " (frame " +
+                                                    std::to_string(frames[i]) + "): " + what
+                                              : what);
+            }
+        } catch (const cutaway::InputError& e) {
+            if (++failed <= 5) failures.push_back(e.what());
+        }
+    }
+    if (failed > 0) {
+        for (const std::string& failure : failures)
+            std::cerr << "cutaway: error: " << failure << "\n";
+        if (failed > 5) std::cerr << "cutaway: error: ... and " << failed - 5 << " more frame(s)\n";
+        const std::size_t checked = scene.animation.tracks.empty() ? 1 : frames.size();
+        std::cerr << "cutaway: " << failed << " of " << checked << " frames are not valid\n";
+        return kExitInput;
+    }
+    if (!args.quiet)
+        for (const std::string& warning : check.takeWarnings())
+            std::cerr << "cutaway: warning: " << args.scene << ": " << warning << "\n";
+    if (frames.empty())
+        std::printf("%s: valid (no frames in this run)\n", args.scene.c_str());
+    else
+        std::printf("%s: valid (%zu frame(s), %d..%d)\n", args.scene.c_str(), frames.size(),
+                    frames.front(), frames.back());
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -231,13 +288,19 @@ int main(int argc, char** argv) {
                        "frame fails naming the limit (default: the device-local heap)");
     render->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing but errors");
 
-    std::string validateScene;
-    std::vector<std::string> validateSets;
+    RenderArgs validateArgs;
     auto* validate = app.add_subcommand(
-        "validate",
-        "Check a scene and every frame of its animation, without rendering or a device");
-    validate->add_option("scene", validateScene, "Scene file (JSON)")->required();
-    validate->add_option("--set", validateSets, "Override a scene value: /json/pointer=VALUE");
+        "validate", "Check what `render` with the same arguments would refuse: the scene, every "
+                    "frame, the output paths and the files it reads; without a device");
+    validate->add_option("scene", validateArgs.scene, "Scene file (JSON)")->required();
+    validate->add_option("-o,--output", validateArgs.output, "Output pattern, as for render");
+    validate->add_option("--frames", validateArgs.frames, "Frames A..B or N, as for render");
+    validate->add_option("--shard", validateArgs.shard, "I/N, as for render");
+    validate->add_option("--size", validateArgs.size, "WIDTHxHEIGHT, as for render");
+    validate->add_option("--set", validateArgs.sets, "Override a scene value: /json/pointer=VALUE");
+    validate->add_flag("--png", validateArgs.png, "PNG previews, as for render");
+    validate->add_flag("-q,--quiet", validateArgs.quiet,
+                       "Print nothing but errors and the verdict");
 
     ExportArgs exportArgs;
     auto* exportCommand = app.add_subcommand(
@@ -268,38 +331,7 @@ int main(int argc, char** argv) {
 
     try {
         if (render->parsed()) return runRender(renderArgs);
-        if (validate->parsed()) {
-            const cutaway::Scene scene =
-                cutaway::loadScene(validateScene, parseSettings(validateSets));
-            const auto& a = scene.animation;
-            // Every frame is checked; the first few failures are shown.
-            std::vector<std::string> failures;
-            std::vector<cutaway::Scene> frames;
-            int failed = 0;
-            for (int f = a.firstFrame; f <= a.lastFrame && !a.tracks.empty(); ++f) {
-                try {
-                    frames.push_back(cutaway::sceneAtFrame(scene, f));
-                } catch (const cutaway::InputError& e) {
-                    if (++failed <= 5) failures.push_back(e.what());
-                }
-            }
-            if (a.tracks.empty()) frames.push_back(scene);
-            if (failed > 0) {
-                for (const std::string& failure : failures)
-                    std::cerr << "cutaway: error: " << failure << "\n";
-                if (failed > 5)
-                    std::cerr << "cutaway: error: ... and " << failed - 5 << " more frame(s)\n";
-                std::cerr << "cutaway: " << failed << " of " << a.lastFrame - a.firstFrame + 1
-                          << " frames are not valid\n";
-                return kExitInput;
-            }
-            // The files, read as a render would read them.
-            for (const std::string& warning : cutaway::job::checkSceneFiles(frames))
-                std::cerr << "cutaway: warning: " << scene.file.string() << ": " << warning << "\n";
-            std::printf("%s: valid (frames %d..%d)\n", validateScene.c_str(), a.firstFrame,
-                        a.lastFrame);
-            return 0;
-        }
+        if (validate->parsed()) return runValidate(validateArgs);
         if (exportCommand->parsed()) return runExport(exportArgs);
         if (info->parsed()) {
             std::fputs(

@@ -10,6 +10,8 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfRational.h>
+#include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <cmath>
@@ -18,6 +20,7 @@
 #include <fstream>
 #include <limits>
 #include <new>
+#include <numeric>
 
 namespace cutaway {
 
@@ -63,6 +66,18 @@ Imf::Compression toImf(ExrCompression compression) {
     return Imf::ZIP_COMPRESSION;
 }
 
+// A frame rate as OpenEXR's rational: the NTSC rates exactly (30000/1001),
+// others to a thousandth of a frame per second.
+Imf::Rational frameRate(double fps) {
+    for (const int base : {24, 30, 60}) {
+        const double ntsc = base * 1000.0 / 1001.0;
+        if (std::abs(fps - ntsc) < 1e-3) return Imf::Rational(base * 1000, 1001);
+    }
+    const double thousandths = std::round(fps * 1000.0);
+    const int gcd = std::gcd(static_cast<int>(thousandths), 1000);
+    return Imf::Rational(static_cast<int>(thousandths) / gcd, static_cast<unsigned>(1000 / gcd));
+}
+
 Imf::Header makeHeader(const Image& image, const ExrOptions& options) {
     Imf::Header header(image.width, image.height); // data = display window, origin (0,0)
     header.compression() = toImf(options.compression);
@@ -76,6 +91,8 @@ Imf::Header makeHeader(const Image& image, const ExrOptions& options) {
     // string attribute by convention. Inserted first so a caller's attribute
     // of the same name wins.
     header.insert("software", Imf::StringAttribute("cutaway " CUTAWAY_VERSION));
+    if (options.framesPerSecond)
+        Imf::addFramesPerSecond(header, frameRate(*options.framesPerSecond));
     for (const auto& [name, value] : options.attributes) {
         header.insert(name, Imf::StringAttribute(value)); // throws on a clash of types
     }

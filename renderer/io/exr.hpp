@@ -6,6 +6,7 @@
 #include "io/image.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,9 @@ struct ExrOptions {
     ExrCompression compression = ExrCompression::Zip;
     std::vector<std::pair<std::string, std::string>> attributes; ///< extra string attributes
     std::vector<ExrChannel> channels; ///< extra FLOAT channels (e.g. operator ids)
+    /// OpenEXR's standard framesPerSecond attribute (a rational), which
+    /// compositors (Nuke, DaVinci Resolve) read; none when not set.
+    std::optional<double> framesPerSecond;
 };
 
 void writeExr(const std::filesystem::path& path, const Image& image,

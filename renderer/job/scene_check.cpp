@@ -1,12 +1,17 @@
 #include "job/scene_check.hpp"
 
+#include "core/error.hpp"
 #include "job/render_job.hpp"
 #include "mesh/mesh.hpp"
 #include "operators/operator_geometry.hpp"
+#include "render/label_classes.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <set>
+#include <sstream>
 
 namespace cutaway::job {
 
@@ -39,30 +44,77 @@ bool sequential(const Scene& scene) {
     return scene.render.composition == Composition::Sequential && scene.operators.size() > 1;
 }
 
+// What a segment-aligned operator's indicator depends on beyond the files.
+std::string segmentKey(const Alignment& a) {
+    std::ostringstream key;
+    key << "|segment";
+    for (const std::int64_t id : a.labels)
+        key << ' ' << id;
+    if (a.range) key << " range " << (*a.range)[0] << ' ' << (*a.range)[1];
+    return key.str();
+}
+
+// Refuses a segment-aligned operator whose segment holds no voxel of the
+// scan, as its bake would (render/label_classes.hpp), a slab at a time.
+void checkSegmentNotEmpty(const OperatorSpec& op, const Volume& scan, const Volume* labels) {
+    render::SegmentIndicator segment(op, scan, labels);
+    const std::size_t total = scan.voxelCount();
+    std::vector<std::uint8_t> slab(std::min<std::size_t>(total, std::size_t(1) << 20));
+    for (std::size_t first = 0; first < total; first += slab.size())
+        segment.write(first, std::min(slab.size(), total - first), slab.data());
+    segment.checkNotEmpty();
+}
+
 } // namespace
 
-std::vector<std::string> checkSceneFiles(const std::vector<Scene>& frames) {
-    std::vector<std::string> warnings;
-    std::set<std::string> meshesRead;
-    std::set<std::size_t> warned;
-    std::map<std::string, glm::dvec3> extents; // by filesKey
-    for (const Scene& scene : frames) {
-        const std::string key = filesKey(scene);
-        auto it = extents.find(key);
-        if (it == extents.end()) {
+const SceneFileCheck::Files& SceneFileCheck::filesOf(const Scene& scene) {
+    const std::string key = filesKey(scene);
+    auto it = m_files.find(key);
+    if (it == m_files.end()) {
+        Files files;
+        files.key = key;
+        try {
             // Sequential composition resamples the scan and drops its labels
             // (frameVolume): they are not read for such a frame.
-            auto scan = std::make_shared<const Volume>(loadSceneVolume(scene));
-            if (!sequential(scene)) loadSceneLabels(scene, scan);
-            it = extents.emplace(key, scan->extent()).first;
+            files.scan = std::make_shared<const Volume>(loadSceneVolume(scene));
+            if (!sequential(scene)) files.labels = loadSceneLabels(scene, files.scan);
+        } catch (const InputError& e) {
+            files.error = e.what(); // read once, reported for every frame that names them
         }
-        const glm::dvec3 extent = it->second;
-        for (const MeshSpec& mesh : scene.meshes)
-            if (meshesRead.insert(mesh.file.string()).second) mesh::loadGltf(mesh.file);
-        for (OperatorOutside& o : operatorsOutside(scene, -0.5 * extent, 0.5 * extent))
-            if (warned.insert(o.index).second) warnings.push_back(std::move(o.message));
+        it = m_files.emplace(key, std::move(files)).first;
     }
-    return warnings;
+    if (!it->second.error.empty()) throw InputError(it->second.error);
+    return it->second;
+}
+
+void SceneFileCheck::frame(const Scene& scene) {
+    const Files& files = filesOf(scene);
+    if (!sequential(scene)) {
+        // What each frame's render refuses before it draws: overlapping
+        // operators, a segment without voxels (its scan and labels as read).
+        operators::checkNoOverlap(scene.operators);
+        for (std::size_t i = 0; i < scene.operators.size(); ++i) {
+            const OperatorSpec& op = scene.operators[i];
+            if (op.alignment.mode != AlignmentMode::Segment) continue;
+            const std::string key = files.key + segmentKey(op.alignment);
+            if (!m_segments.contains(key)) {
+                std::string error;
+                try {
+                    checkSegmentNotEmpty(op, *files.scan, files.labels.get());
+                } catch (const InputError& e) {
+                    error = "/operators/" + std::to_string(i) + "/alignment: " + e.what();
+                }
+                m_segments.emplace(key, error);
+            }
+            if (const std::string& error = m_segments.at(key); !error.empty())
+                throw InputError(error);
+        }
+    }
+    for (const MeshSpec& mesh : scene.meshes)
+        if (m_meshesRead.insert(mesh.file.string()).second) mesh::loadGltf(mesh.file);
+    const glm::dvec3 extent = files.scan->extent();
+    for (OperatorOutside& o : operatorsOutside(scene, -0.5 * extent, 0.5 * extent))
+        if (m_warned.insert(o.index).second) m_warnings.push_back(std::move(o.message));
 }
 
 } // namespace cutaway::job

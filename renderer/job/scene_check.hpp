@@ -6,7 +6,11 @@
 
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <map>
+#include <memory>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cutaway::job {
@@ -20,13 +24,34 @@ struct OperatorOutside {
 };
 std::vector<OperatorOutside> operatorsOutside(const Scene& scene, glm::dvec3 lo, glm::dvec3 hi);
 
-/// Reads every file the frames' scenes name, each distinct one once, as
-/// rendering them would: the volume (or makes the phantom), the label volume
-/// (checked against the scan's grid) and the glTF models. Throws InputError
-/// naming the file of the first one a render would refuse. Returns the
-/// warnings a render would print, each operator once. Under sequential
+/// Checks the frames of a run one by one as rendering them would, without a
+/// device: reads the volume (or makes the phantom) and the label volume
+/// (checked against the scan's grid) once per distinct pair, and each glTF
+/// model once; refuses overlapping operators and a segment-aligned operator
+/// whose segment holds no voxel. Collects the warnings a render would print
+/// (operators outside the volume), each operator once. Under sequential
 /// composition the intermediate volume is not resampled: operators are
-/// checked against the scan's box.
-std::vector<std::string> checkSceneFiles(const std::vector<Scene>& frames);
+/// checked against the scan's box, and overlaps and segments not at all.
+class SceneFileCheck {
+public:
+    /// Throws InputError naming the file or the JSON pointer of the first
+    /// thing this frame's render would refuse.
+    void frame(const Scene& scene);
+    std::vector<std::string> takeWarnings() { return std::exchange(m_warnings, {}); }
+
+private:
+    struct Files {
+        std::string key;
+        std::shared_ptr<const Volume> scan, labels;
+        std::string error; ///< why reading them failed, or ""
+    };
+    const Files& filesOf(const Scene& scene);
+
+    std::map<std::string, Files> m_files;          ///< by what they are read from
+    std::map<std::string, std::string> m_segments; ///< segment checked -> its error, or ""
+    std::set<std::string> m_meshesRead;
+    std::set<std::size_t> m_warned;
+    std::vector<std::string> m_warnings;
+};
 
 } // namespace cutaway::job

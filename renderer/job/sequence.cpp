@@ -250,6 +250,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             ExrOptions exr;
             exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
             exr.compression = exrCompression(frameScene.output.compression);
+            exr.framesPerSecond = scene.animation.fps;
             exr.attributes = {{"cutaway/frame", std::to_string(event.frame)},
                               {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
                               {"cutaway/version", CUTAWAY_VERSION},

@@ -117,6 +117,7 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
     std::vector<Placed> placed;
     glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
     const glm::dvec3 volumeLo = lo;
+    const WorldBox volumeBox{glm::dmat4(1.0), {lo, hi}};
     for (const OperatorSpec& op : std::span(first, count)) {
         const WorldBox box{op.localToWorld, materialBounds(op.params)};
         FeatureField field;
@@ -126,6 +127,9 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
                 throw std::logic_error("resampleDeformed: a feature field off the volume's grid");
         }
         placed.push_back({&op, box, glm::inverse(op.localToWorld), std::move(field)});
+        // Material moves out of the operator's own box V_T: one that misses
+        // the volume moves none, and does not grow the grid.
+        if (!intersects(WorldBox{op.localToWorld, {}}, volumeBox)) continue;
         lo = glm::min(lo, box.lo());
         hi = glm::max(hi, box.hi());
     }

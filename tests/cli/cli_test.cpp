@@ -161,6 +161,53 @@ TEST_F(CliTest, ValidateChecksWithoutRendering) {
     EXPECT_NE(r.output.find("/volume/phantom"), std::string::npos) << r.output;
 }
 
+// validate refuses what render would refuse as bad input, frame by frame:
+// operators that come to overlap in a later frame, a segment without voxels,
+// output paths of the run its arguments describe.
+TEST_F(CliTest, ValidateRefusesWhatRenderWould) {
+    const fs::path moving = write("moving.json", R"({ "version": 1,
+      "volume": { "phantom": "head", "size": [24, 24, 24] },
+      "render": { "size": [24, 24] },
+      "operators": [
+        { "type": "retractor", "name": "left", "placement": { "translate": [-8, 0, 0], "scale": [6, 10, 10] } },
+        { "type": "retractor", "name": "right", "placement": { "translate": [8, 0, 0], "scale": [6, 10, 10] } } ],
+      "animation": { "frames": [0, 5], "tracks": [ { "target": "/operators/1/placement/translate",
+        "keys": [ { "frame": 0, "value": [8, 0, 0] }, { "frame": 5, "value": [-4, 0, 0] } ] } ] },
+      "output": { "pattern": "frames/m_####.exr" } })");
+    CommandResult v = run("validate " + moving.string());
+    EXPECT_EQ(v.code, 2) << v.output;
+    EXPECT_NE(v.output.find("(frame 5): /operators/0 and /operators/1"), std::string::npos)
+        << v.output;
+    EXPECT_EQ(v.output.find("(frame 0)"), std::string::npos) << v.output;
+    EXPECT_NE(v.output.find(" of 6 frames are not valid"), std::string::npos) << v.output;
+    CommandResult early = run("validate " + moving.string() + " --frames 0..1");
+    EXPECT_EQ(early.code, 0) << early.output;
+    EXPECT_NE(early.output.find("valid (2 frame(s), 0..1)"), std::string::npos) << early.output;
+    CommandResult r = run("render " + moving.string() + " --frames 5");
+    EXPECT_EQ(r.code, 2) << "render agrees: " << r.output;
+
+    // The run's output paths: one file for two frames, even one per shard.
+    for (const std::string args :
+         {" --frames 0..1 -o one.exr", " --frames 0..1 --shard 1/2 -o one.exr"}) {
+        CommandResult o = run("validate " + moving.string() + args);
+        EXPECT_EQ(o.code, 2) << args << o.output;
+        EXPECT_NE(o.output.find("no frame number"), std::string::npos) << o.output;
+    }
+
+    const fs::path empty = write("empty.json", R"({ "version": 1,
+      "volume": { "phantom": "head", "size": [24, 24, 24] },
+      "labels": { "phantom": true },
+      "operators": [ { "type": "peeler", "placement": { "scale": [10, 10, 10] },
+                       "alignment": { "mode": "segment", "labels": [7] } } ] })");
+    CommandResult e = run("validate " + empty.string());
+    EXPECT_EQ(e.code, 2) << e.output;
+    EXPECT_NE(e.output.find(empty.string() + " (frame 0): /operators/0/alignment:"),
+              std::string::npos)
+        << e.output;
+    EXPECT_NE(e.output.find("segment of its alignment is empty"), std::string::npos) << e.output;
+    EXPECT_FALSE(fs::exists(m_dir / "frames"));
+}
+
 TEST_F(CliTest, InfoDescribesAVolume) {
     cutaway::Phantom p = cutaway::makePhantom("head", glm::ivec3(24, 20, 16), glm::dvec3(1, 1, 2));
     cutaway::writeNrrd(m_dir / "head.nrrd", p.values);

@@ -158,6 +158,29 @@ TEST(DeformedVolume, ALiftedFlapGrowsTheGrid) {
     EXPECT_GT(above, 100.0) << "the flap's rind lies above the original box";
 }
 
+// An operator whose own box misses the volume moves nothing and does not
+// grow the grid (it used to stretch it to reach the operator: a 32^3 scan
+// with a retractor 100 m away exported 100024 x 32 x 32 voxels); one that
+// reaches the volume still does.
+TEST(DeformedVolume, AnOperatorOutsideTheVolumeDoesNotGrowTheGrid) {
+    const Volume v = makePhantom("orange", {40, 40, 40}).values;
+    const std::string flap = R"({ "type": "peeler",
+        "placement": { "translate": [0, 0, 12], "scale": [36, 30, 16] },
+        "params": { "hinge": -6, "thickness": 5, "radius": 3, "angle": 160 } })";
+    const Scene s = withOperators("[" + flap + R"(, { "type": "retractor",
+        "placement": { "translate": [100000, 0, 0], "scale": [10, 10, 10] } }])");
+    const Volume out = operators::resampleDeformed(operators::centred(v), s.operators, 0.0f).volume;
+    EXPECT_EQ(out.dims.x, v.dims.x);
+    EXPECT_EQ(out.dims.y, v.dims.y);
+    const Volume flapOnly =
+        operators::resampleDeformed(operators::centred(v),
+                                    withOperators("[" + flap + "]").operators, 0.0f)
+            .volume;
+    EXPECT_EQ(out.dims, flapOnly.dims);
+    EXPECT_GT(out.dims.z, v.dims.z) << "the flap still grows it";
+    EXPECT_EQ(out.data, flapOnly.data) << "and the stray operator changes nothing";
+}
+
 TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
     const auto scene = write("s.json", R"({ "version": 1,
         "volume": { "phantom": "head", "size": [24, 24, 24] },

@@ -197,6 +197,25 @@ TEST(Exr, StringAttributesRoundTrip) {
     EXPECT_EQ(readExrStringAttribute(path, "compression"), "");
 }
 
+// The standard framesPerSecond attribute compositors read: NTSC rates as
+// their exact rationals, others in lowest terms; none unless asked for.
+TEST(Exr, FramesPerSecondIsTheStandardRational) {
+    const auto dir = std::filesystem::temp_directory_path() / "cutaway_exr_fps";
+    std::filesystem::create_directories(dir);
+    const Image img = randomImage(5, 3, 0.0f, 1.0f, 7);
+    for (const auto& [fps, expected] :
+         {std::pair{24.0, std::pair{24, 1u}}, std::pair{29.97, std::pair{30000, 1001u}},
+          std::pair{23.976, std::pair{24000, 1001u}}, std::pair{12.5, std::pair{25, 2u}}}) {
+        ExrOptions options;
+        options.framesPerSecond = fps;
+        writeExr(dir / "f.exr", img, options);
+        EXPECT_EQ(test::exrFramesPerSecond(dir / "f.exr"), expected) << fps;
+    }
+    writeExr(dir / "none.exr", img, {});
+    EXPECT_EQ(test::exrFramesPerSecond(dir / "none.exr"), (std::pair{0, 0u}));
+    std::filesystem::remove_all(dir);
+}
+
 TEST(Exr, MissingFileIsInputErrorNamingIt) {
     TempDir dir;
     const fs::path path = dir / "missing.exr";
