@@ -126,15 +126,10 @@ SceneSetting parseSetting(const std::string& assignment) {
 
 namespace {
 
-// Whether pointer a is b or lies inside it ("/camera/orbit" holds "/camera/orbit/azimuth").
-bool within(const std::string& a, const std::string& b) {
-    return a == b || (a.size() > b.size() && a.starts_with(b) && a[b.size()] == '/');
-}
-
 // A setting wins over the tracks that would write the same value: those
 // whose target is the setting's pointer, lies inside it or holds it.
 void dropTracksOverriddenBy(nlohmann::json& document, const std::string& pointer) {
-    if (within(pointer, "/animation") || !document.is_object()) return;
+    if (pointerWithin(pointer, "/animation") || !document.is_object()) return;
     const auto animation = document.find("animation");
     if (animation == document.end() || !animation->is_object()) return;
     const auto tracks = animation->find("tracks");
@@ -143,14 +138,18 @@ void dropTracksOverriddenBy(nlohmann::json& document, const std::string& pointer
     for (const nlohmann::json& track : *tracks) {
         const auto target = track.is_object() ? track.find("target") : track.end();
         const bool overridden = target != track.end() && target->is_string() &&
-                                (within(target->get<std::string>(), pointer) ||
-                                 within(pointer, target->get<std::string>()));
+                                (pointerWithin(target->get<std::string>(), pointer) ||
+                                 pointerWithin(pointer, target->get<std::string>()));
         if (!overridden) kept.push_back(track);
     }
     *tracks = std::move(kept);
 }
 
 } // namespace
+
+bool pointerWithin(const std::string& a, const std::string& b) {
+    return a == b || (a.size() > b.size() && a.starts_with(b) && a[b.size()] == '/');
+}
 
 void applySettings(nlohmann::json& document, const std::vector<SceneSetting>& settings) {
     for (const SceneSetting& s : settings) {

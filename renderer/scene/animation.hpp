@@ -26,6 +26,10 @@ nlohmann::json applyTracks(const nlohmann::json& document, const Animation& anim
 /// cannot be entered, and an index is plain digits ("1", not "01").
 std::string pointerWriteProblem(const nlohmann::json& document, const std::string& pointer);
 
+/// Whether JSON pointer a is b or lies inside it ("/camera/orbit" holds
+/// "/camera/orbit/azimuth", not "/camera/orbital").
+bool pointerWithin(const std::string& a, const std::string& b);
+
 /// Parses "/json/pointer=VALUE"; throws InputError naming --set.
 SceneSetting parseSetting(const std::string& assignment);
 

@@ -1,3 +1,4 @@
+#include "scene/animation.hpp"
 #include "scene/scene_sections.hpp"
 
 #include <cmath>
@@ -42,10 +43,20 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
     }
     animation.fps = reader.number("fps", animation.fps, Range::openClosed(0.0, 1000.0));
 
-    reader.objects("tracks", 0, 1000, [&](JsonReader& t, std::size_t) {
+    reader.objects("tracks", 0, 1000, [&](JsonReader& t, std::size_t index) {
         Track track;
         if (auto target = t.string("target", {}, true)) {
             track.target = *target;
+            // Two tracks of one value: the later would silently win.
+            for (std::size_t j = 0; j < index && j < animation.tracks.size(); ++j) {
+                const std::string& other = animation.tracks[j].target;
+                if (other.empty() ||
+                    !(pointerWithin(*target, other) || pointerWithin(other, *target)))
+                    continue;
+                t.error("target", "\"" + *target + "\" writes what track " + std::to_string(j) +
+                                      " (\"" + other + "\") writes; give each value one track");
+                break;
+            }
             try {
                 nlohmann::json::json_pointer pointer(track.target);
                 if (pointer.empty() || track.target.rfind("/animation", 0) == 0 ||

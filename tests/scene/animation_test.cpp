@@ -227,4 +227,34 @@ TEST(Animation, ASettingRemovesTheTracksOfItsValue) {
     EXPECT_EQ(tracks(d).size(), 4u);
 }
 
+// Two tracks of one value (the same target, or one inside the other's) are
+// refused: the later would silently win.
+TEST(Animation, TwoTracksOfOneValueAreRefused) {
+    const auto scene = [](const std::string& a, const std::string& b) {
+        return nlohmann::json::parse(R"({ "version": 1, "volume": { "phantom": "head" },
+          "animation": { "tracks": [
+            { "target": ")" + a + R"(", "keys": [ { "frame": 0, "value": 1 } ] },
+            { "target": "/camera/fov", "keys": [ { "frame": 0, "value": 30 } ] },
+            { "target": ")" + b + R"(", "keys": [ { "frame": 0, "value": 2 } ] } ] } })");
+    };
+    const auto error = [&](const std::string& a, const std::string& b) -> std::string {
+        try {
+            (void)parseScene(scene(a, b), "/nonexistent", "s.json");
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(error("/camera/orbit/azimuth", "/camera/orbit/azimuth"),
+              "s.json: /animation/tracks/2/target: \"/camera/orbit/azimuth\" writes what track 0 "
+              "(\"/camera/orbit/azimuth\") writes; give each value one track");
+    EXPECT_NE(error("/operators/0/placement/translate", "/operators/0/placement/translate/1")
+                  .find("writes what track 0"),
+              std::string::npos);
+    EXPECT_NE(error("/camera/orbit/azimuth", "/camera/orbit").find("writes what track 0"),
+              std::string::npos);
+    EXPECT_EQ(error("/camera/orbit/azimuth", "/camera/orbit/elevation"), "");
+    EXPECT_EQ(error("/camera/orbit/azimuth", "/camera/orbit/azimuthal"), "");
+}
+
 } // namespace cutaway::test
