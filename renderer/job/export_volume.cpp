@@ -32,8 +32,7 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
     if (withLabels && !scene.labels) throw InputError("the scene has no /labels to export");
     auto scan = std::make_shared<Volume>(loadSceneVolume(scene));
     const float empty = emptyValue(scene, *scan);
-    const bool sequential =
-        scene.render.composition == Composition::Sequential && scene.operators.size() > 1;
+    const bool resamplesSequentially = sequential(scene);
     // Segments by labels: the parser allows them only where the operator
     // applies to the scan itself (not under sequential composition).
     bool byLabels = false;
@@ -54,12 +53,12 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
     };
     const auto deform = [&](const operators::PlacedVolume& in, float emptyValue,
                             operators::Sampling sampling) {
-        return sequential ? operators::resampleSequentially(in, scene.operators, emptyValue,
-                                                            fieldFor, sampling)
-                          : operators::resampleDeformed(in, scene.operators, emptyValue, fieldFor,
-                                                        sampling);
+        return resamplesSequentially ? operators::resampleSequentially(
+                                           in, scene.operators, emptyValue, fieldFor, sampling)
+                                     : operators::resampleDeformed(in, scene.operators, emptyValue,
+                                                                   fieldFor, sampling);
     };
-    if (!sequential) operators::checkNoOverlap(scene.operators);
+    if (!resamplesSequentially) operators::checkNoOverlap(scene.operators);
     // The scan moves into place unless it is also the label volume.
     const operators::PlacedVolume placed =
         operators::centred(labels.get() == scan.get() ? Volume(*scan) : std::move(*scan));

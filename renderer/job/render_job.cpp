@@ -99,13 +99,9 @@ float emptyValue(const Scene& scene, const Volume& scan) {
     return static_cast<float>(std::min(sceneWindow(scene, scan).lo, valueRange(scan).min));
 }
 
-namespace {
-
 bool sequential(const Scene& scene) {
     return scene.render.composition == Composition::Sequential && scene.operators.size() > 1;
 }
-
-} // namespace
 
 FrameVolume frameVolume(const Scene& scene) {
     // A phantom with its own labels is generated once, for both.

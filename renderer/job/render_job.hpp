@@ -47,6 +47,10 @@ bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
 /// to an aligned operator's threshold or value range made from the result.
 float emptyValue(const Scene& scene, const Volume& scan);
 
+/// Whether the frame resamples the scan on the CPU: sequential composition
+/// with more than one operator (all but the last are baked into the volume).
+bool sequential(const Scene& scene);
+
 /// The volume a frame renders and its value window: the scan itself, or under
 /// sequential composition the scan deformed by every operator but the last
 /// (resampled on the CPU). The window is always the scan's.

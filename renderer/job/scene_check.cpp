@@ -40,10 +40,6 @@ std::string filesKey(const Scene& scene) {
     return frameVolumeKey(probe);
 }
 
-bool sequential(const Scene& scene) {
-    return scene.render.composition == Composition::Sequential && scene.operators.size() > 1;
-}
-
 // What a segment-aligned operator's indicator depends on beyond the files.
 std::string segmentKey(const Alignment& a) {
     std::ostringstream key;
