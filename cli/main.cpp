@@ -181,8 +181,19 @@ int runExport(const ExportArgs& args) {
             throw cutaway::InputError("--labels-output " + args.labelsOutput +
                                       ": the same file as -o");
     }
-    const cutaway::job::Exported exported =
-        cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
+    const cutaway::job::Exported exported = [&] {
+        try {
+            return cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
+        } catch (const cutaway::InputError& e) {
+            const std::string what = e.what();
+            // A JSON pointer is a place in the scene file: name the file too.
+            if (!what.starts_with('/')) throw;
+            throw cutaway::InputError(args.scene + " (frame " + std::to_string(frame) +
+                                      "): " + what);
+        }
+    }();
+    for (const std::string& warning : exported.warnings)
+        std::fprintf(stderr, "cutaway: warning: %s: %s\n", args.scene.c_str(), warning.c_str());
     const auto write = [&](const std::filesystem::path& path, const cutaway::Volume& v) {
         cutaway::job::createOutputFolder(path); // as `render` does
         cutaway::writeNrrd(path, v, !args.raw);

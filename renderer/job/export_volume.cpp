@@ -3,6 +3,7 @@
 #include "bake/feature_bake.hpp"
 #include "core/error.hpp"
 #include "job/render_job.hpp"
+#include "job/scene_check.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/label_classes.hpp"
 #include "volume/otsu.hpp"
@@ -64,6 +65,9 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
         operators::centred(labels.get() == scan.get() ? Volume(*scan) : std::move(*scan));
     scan.reset();
     Exported result;
+    for (OperatorOutside& o :
+         operatorsOutside(scene, placed.worldLo, placed.worldLo + placed.volume.extent()))
+        result.warnings.push_back(std::move(o.message));
     result.volume = deform(placed, empty, operators::Sampling::Trilinear).volume;
     if (withLabels) {
         // On the scan's grid exactly (loadSceneLabels allows spacings 0.1 %

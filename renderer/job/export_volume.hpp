@@ -9,6 +9,7 @@
 #include "volume/volume.hpp"
 
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace cutaway::job {
@@ -27,8 +28,9 @@ std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
 /// scan's grid where the scan has it (physicalPosition): the grid grows by
 /// whole voxels along the scan's index axes to hold what operators move out.
 struct Exported {
-    Volume volume;                ///< the scan deformed, float32
-    std::optional<Volume> labels; ///< the label volume deformed alike, when asked for
+    Volume volume;                     ///< the scan deformed, float32
+    std::optional<Volume> labels;      ///< the label volume deformed alike, when asked for
+    std::vector<std::string> warnings; ///< what a render would warn of (operators outside)
 };
 
 /// The volume of `scene` (one frame: see sceneAtFrame) deformed by all its

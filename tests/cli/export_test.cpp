@@ -198,8 +198,21 @@ TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
     CommandResult o =
         runCutaway("export " + overlap.string() + " -o " + (m_dir / "o.nrrd").string());
     EXPECT_EQ(o.code, 2) << o.output;
+    EXPECT_NE(o.output.find(overlap.string() + " (frame 0): /operators/0 and /operators/1"),
+              std::string::npos)
+        << o.output;
     EXPECT_NE(o.output.find("overlap"), std::string::npos) << o.output;
     EXPECT_FALSE(std::filesystem::exists(m_dir / "o.nrrd"));
+    // An operator outside the volume is warned of, as render does.
+    const auto stray = write("stray.json", R"({ "version": 1,
+        "volume": { "phantom": "head", "size": [24, 24, 24] },
+        "operators": [ { "type": "retractor", "name": "far", "placement": { "translate": [900, 0, 0], "scale": [10, 10, 10] } } ] })");
+    CommandResult w = runCutaway("export " + stray.string() + " -o " + (m_dir / "w.nrrd").string());
+    EXPECT_EQ(w.code, 0) << w.output;
+    EXPECT_NE(w.output.find("warning: " + stray.string() + ": /operators/0: \"far\" lies outside"),
+              std::string::npos)
+        << w.output;
+    EXPECT_EQ(readVolume(m_dir / "w.nrrd").dims, glm::ivec3(24));
 }
 
 // --labels-output writes the label volume deformed alike, in its own type,
