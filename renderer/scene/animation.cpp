@@ -161,15 +161,55 @@ void applySettings(nlohmann::json& document, const std::vector<SceneSetting>& se
     }
 }
 
+namespace {
+
+// Each line of a frame's parse error that names a value a track wrote gets the
+// track's name, and for a whole number written by an interpolating track the
+// remedy: the track is where the user has to look, not the value's pointer.
+std::string namingTracks(const std::string& message, const std::string& source,
+                         const Animation& animation) {
+    std::string out;
+    std::size_t start = 0;
+    while (start < message.size()) {
+        const std::size_t end = std::min(message.find('\n', start), message.size());
+        std::string line = message.substr(start, end - start);
+        const std::string prefix = source + ": /";
+        if (line.starts_with(prefix)) {
+            const std::size_t colon = line.find(": ", prefix.size());
+            const std::string pointer = line.substr(prefix.size() - 1, colon - prefix.size() + 1);
+            // Tracks apply in order, so the last one that wrote the value counts.
+            for (std::size_t i = animation.tracks.size(); i-- > 0;) {
+                const Track& track = animation.tracks[i];
+                if (!pointerWithin(pointer, track.target)) continue;
+                line += " (written by /animation/tracks/" + std::to_string(i) + ")";
+                if (line.find("expected an integer") != std::string::npos &&
+                    track.interpolation != Interpolation::Step)
+                    line += "; a whole number between keys needs \"interpolation\": \"step\"";
+                break;
+            }
+        }
+        out += line;
+        if (end < message.size()) out += '\n';
+        start = end + 1;
+    }
+    return out;
+}
+
+} // namespace
+
 Scene sceneAtFrame(const Scene& scene, int frame) {
     if (scene.animation.tracks.empty()) return scene;
     const std::string source =
         (scene.file.empty() ? std::string("<string>") : scene.file.string()) + " (frame " +
         std::to_string(frame) + ")";
-    Scene s = parseScene(applyTracks(scene.document, scene.animation, frame, source), scene.baseDir,
-                         source);
-    s.file = scene.file;
-    return s;
+    const nlohmann::json document = applyTracks(scene.document, scene.animation, frame, source);
+    try {
+        Scene s = parseScene(document, scene.baseDir, source);
+        s.file = scene.file;
+        return s;
+    } catch (const InputError& e) {
+        throw InputError(namingTracks(e.what(), source, scene.animation));
+    }
 }
 
 } // namespace cutaway

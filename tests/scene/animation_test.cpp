@@ -104,6 +104,35 @@ TEST(Animation, AFrameDrivenOutOfRangeIsReportedWithItsFrame) {
     }
 }
 
+TEST(Animation, AValueATrackDroveOutOfRangeNamesTheTrack) {
+    nlohmann::json doc = patched(R"({"render": {"size": [64, 64]}, "animation": {"frames": [0, 3],
+        "tracks": [{"target": "/camera/fov", "keys": [{"frame": 0, "value": 30}, {"frame": 3, "value": 330}]},
+                   {"target": "/render/size", "keys": [{"frame": 0, "value": [64, 64]}, {"frame": 3, "value": [65, 66]}]},
+                   {"target": "/render/size_typo", "interpolation": "step", "keys": [{"frame": 0, "value": 1}]}]}})");
+    Scene scene = parseScene(doc, "/nonexistent/scenes", "scene.json");
+    const std::string error = [&] {
+        try {
+            sceneAtFrame(scene, 2);
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    }();
+    EXPECT_NE(error.find("/camera/fov: expected a number in (0, 170), got 230 (written by "
+                         "/animation/tracks/0)\n"),
+              std::string::npos)
+        << error;
+    EXPECT_NE(error.find("/render/size/0: expected an integer in [1, 16384], got 64.6666666666667 "
+                         "(written by /animation/tracks/1); a whole number between keys needs "
+                         "\"interpolation\": \"step\""),
+              std::string::npos)
+        << error;
+    // /render/size_typo lies beside /render/size, not within it.
+    EXPECT_NE(error.find("/render/size_typo: unknown key (written by /animation/tracks/2)"),
+              std::string::npos)
+        << error;
+}
+
 TEST(Animation, BadTracksAreReportedAtTheirPointers) {
     EXPECT_NE(parseError(patched(R"({"animation": {"frames": [5, 2]}})")).find("/animation/frames"),
               std::string::npos);
