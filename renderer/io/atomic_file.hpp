@@ -6,10 +6,16 @@
 // file it names is replaced, the link stays); one that exists and is not a
 // regular file (a folder, a device such as /dev/null, a named pipe) is
 // refused, since the rename would replace it with a regular file.
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 
 namespace cutaway {
+
+/// The longest file name writeAtomically() takes: the temporary's name adds
+/// "." and ".tmp-PID-N" (a Linux pid has at most 7 digits, N at most 20) and
+/// must still fit the 255 bytes a folder entry holds on Linux file systems.
+inline constexpr std::size_t kLongestFileName = 255 - (1 + 5 + 7 + 1 + 20);
 
 /// Calls write(tmp) with a temporary path next to `target`, then renames it to
 /// `target`. Throws InputError naming the target when it exists and is not a

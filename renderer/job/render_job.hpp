@@ -71,9 +71,10 @@ std::string frameVolumeKey(const Scene& scene);
 /// under sequential composition only the last.
 std::vector<OperatorSpec> liveOperators(const Scene& scene);
 
-/// Expands "####" (any run of #) or "%0Nd" / "%d" in `pattern` with `frame`,
-/// padded to the run's length or N (any width). A pattern without a
-/// placeholder is used as is.
+/// Expands "####" (any run of #) or "%0Nd" / "%Nd" / "%d" in `pattern` with
+/// `frame`, padded to the run's length or N with zeros (spaces for "%Nd").
+/// "%%" is one '%', as in printf; a pattern without a placeholder is
+/// otherwise used as is.
 std::string expandPattern(const std::string& pattern, int frame);
 
 /// How many frame-number placeholders `pattern` holds (runs of #, %d forms);

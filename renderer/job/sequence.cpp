@@ -1,6 +1,7 @@
 #include "job/sequence.hpp"
 
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/exr.hpp"
 #include "io/png.hpp"
 #include "scene/animation.hpp"
@@ -94,6 +95,12 @@ void checkOutputPaths(const Scene& scene, const SequenceOptions& options) {
         std::vector<std::filesystem::path> paths{exr};
         if (png) paths.push_back(previewPath(exr));
         for (const std::filesystem::path& path : paths) {
+            if (path.filename().string().size() > kLongestFileName)
+                throw InputError(where + ": frame " + std::to_string(frame) +
+                                 "'s file name is longer than the " +
+                                 std::to_string(kLongestFileName) +
+                                 " bytes cutaway can write (a folder holds names of 255, and "
+                                 "each file is first written under a longer temporary name)");
             std::error_code ec;
             const auto status = std::filesystem::status(path, ec);
             if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))

@@ -138,6 +138,11 @@ TEST_F(CliTest, OutputPathsThatWouldLoseFramesAreRefusedBeforeRendering) {
     refused("-o " + (m_dir / "t_####_%04d.exr").string(), "2 frame numbers");
     // The EXR named .png: its preview would replace it.
     refused("--frames 0 --png -o " + (m_dir / "t_####.png").string(), "PNG preview");
+    // A name longer than a folder entry, with its temporary's, can hold; a
+    // width past any integer's range is no crash.
+    refused("--frames 0 -o " + (m_dir / "t_%0221d.exr").string(), "longer than the 221 bytes");
+    refused("--frames 0 -o " + (m_dir / "t_%099999999999999999999d.exr").string(),
+            "frame 0's file name is longer");
     // A named pipe (as a device such as /dev/null would be) is not replaced.
     const fs::path pipe = m_dir / "p_0001.exr";
     ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
@@ -170,6 +175,12 @@ TEST(Pattern, PadsFrameNumbersToAnyWidth) {
     EXPECT_EQ(job::framePlaceholders("a/b.exr"), 0);
     EXPECT_EQ(job::framePlaceholders("a/b_####.exr"), 1);
     EXPECT_EQ(job::framePlaceholders("a#/b_%03d.exr"), 2);
+    // "%%" is a literal '%', as in printf, and no placeholder; a lone '%' stays.
+    EXPECT_EQ(job::expandPattern("f_%%d_50%_%02d.exr", 7), "f_%d_50%_07.exr");
+    EXPECT_EQ(job::expandPattern("f_%%%d_##.exr", 7), "f_%7_07.exr");
+    EXPECT_EQ(job::framePlaceholders("f_%%d.exr"), 0);
+    EXPECT_EQ(job::framePlaceholders("f_%%%d.exr"), 1);
+    EXPECT_EQ(job::expandPattern("f_%%d.exr", 3), "f_%d.exr");
 }
 
 // --set wins over a track of the same value; the header records the frame
