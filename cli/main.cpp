@@ -25,6 +25,8 @@
 #include "volume_info.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -158,9 +160,17 @@ struct ExportArgs {
     bool raw = false;
 };
 
+// Whether `path` names an NRRD file: ".nrrd" in any case, as volumes are read.
+bool isNrrdName(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension == ".nrrd";
+}
+
 int runExport(const ExportArgs& args) {
     const std::filesystem::path out(args.output);
-    if (out.extension() != ".nrrd")
+    if (!isNrrdName(out))
         throw cutaway::InputError("-o " + args.output + ": expected a .nrrd file name");
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
     int frame = base.animation.firstFrame;
@@ -171,7 +181,7 @@ int runExport(const ExportArgs& args) {
     const cutaway::Scene scene = cutaway::sceneAtFrame(base, frame);
     const std::filesystem::path labelsOut(args.labelsOutput);
     if (!args.labelsOutput.empty()) {
-        if (labelsOut.extension() != ".nrrd")
+        if (!isNrrdName(labelsOut))
             throw cutaway::InputError("--labels-output " + args.labelsOutput +
                                       ": expected a .nrrd file name");
         if (!scene.labels)

@@ -92,13 +92,15 @@ void SceneFileCheck::frame(const Scene& scene) {
         for (std::size_t i = 0; i < scene.operators.size(); ++i) {
             const OperatorSpec& op = scene.operators[i];
             if (op.alignment.mode != AlignmentMode::Segment) continue;
-            const std::string key = files.key + segmentKey(op.alignment);
+            // The message names the operator: one key per operator.
+            const std::string key =
+                files.key + segmentKey(op.alignment) + '|' + std::to_string(i) + ' ' + op.name;
             if (!m_segments.contains(key)) {
                 std::string error;
                 try {
                     checkSegmentNotEmpty(op, *files.scan, files.labels.get());
                 } catch (const InputError& e) {
-                    error = "/operators/" + std::to_string(i) + "/alignment: " + e.what();
+                    error = e.what();
                 }
                 m_segments.emplace(key, error);
             }

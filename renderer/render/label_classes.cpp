@@ -71,11 +71,21 @@ LabelBytes labelIndicator(const Volume& labels, const std::vector<std::int64_t>&
     return LabelBytes(labels, std::move(map));
 }
 
+namespace {
+
+// Where a message about an operator's segment points: its alignment in the
+// scene file, and its name.
+std::string where(const OperatorSpec& spec) {
+    return "/operators/" + std::to_string(spec.index) + "/alignment: " + spec.name + ": ";
+}
+
+} // namespace
+
 SegmentIndicator::SegmentIndicator(const OperatorSpec& spec, const Volume& scan,
                                    const Volume* labels)
     : m_spec(spec), m_scan(scan) {
     if (spec.alignment.range) return;
-    if (!labels) throw InputError(spec.name + ": segment alignment by labels needs a label volume");
+    if (!labels) throw InputError(where(spec) + "segment alignment by labels needs a label volume");
     m_labels.emplace(labelIndicator(*labels, spec.alignment.labels));
 }
 
@@ -96,7 +106,7 @@ void SegmentIndicator::write(std::size_t first, std::size_t count, std::uint8_t*
 void SegmentIndicator::checkNotEmpty() const {
     if (!m_any)
         throw InputError(
-            m_spec.name + ": the segment of its alignment is empty (no voxel " +
+            where(m_spec) + "the segment of its alignment is empty (no voxel " +
             (m_spec.alignment.range ? "has a value in the range" : "has one of the labels") + ")");
 }
 

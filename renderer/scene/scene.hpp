@@ -223,6 +223,7 @@ struct OperatorSpec {
     Alignment alignment;       ///< /operators/N/alignment
     std::string name;          ///< /operators/N/name, for messages; default "operator N (type)"
     OperatorGlyph glyph;       ///< /operators/N/glyph
+    int index = 0;             ///< N, for messages that point into the scene
 };
 
 /// /meshes/N: an opaque glTF 2.0 model (.gltf or .glb) drawn with depth before

@@ -242,6 +242,7 @@ void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
         const std::string type =
             r.string("type", {"peeler", "retractor", "pliers", "dilator"}, true).value_or("");
         op.name = r.string("name", "operator " + std::to_string(index) + " (" + type + ")");
+        op.index = static_cast<int>(index);
         glm::dvec3 halfSize(1.0);
         r.object(
             "placement", [&](JsonReader& p) { op.localToWorld = parsePlacement(p, halfSize); },

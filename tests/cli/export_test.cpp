@@ -186,9 +186,10 @@ TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
         "volume": { "phantom": "head", "size": [24, 24, 24] },
         "operators": [ { "type": "dilator", "placement": { "scale": [20, 20, 20] },
                          "params": { "radius": 3, "magnification": 2 } } ] })");
-    CommandResult r = runCutaway("export " + scene.string() + " -o " + (m_dir / "d.nrrd").string());
+    // The extension in any case, as volumes are read.
+    CommandResult r = runCutaway("export " + scene.string() + " -o " + (m_dir / "d.NRRD").string());
     ASSERT_EQ(r.code, 0) << r.output;
-    const Volume out = readVolume(m_dir / "d.nrrd");
+    const Volume out = readVolume(m_dir / "d.NRRD");
     EXPECT_EQ(out.dims, glm::ivec3(24));
     EXPECT_EQ(out.type, VoxelType::F32);
     EXPECT_EQ(runCutaway("export " + scene.string() + " -o " + (m_dir / "d.png").string()).code, 2);
@@ -343,9 +344,24 @@ TEST_F(CliTest, ExportRefusesAnAlignedOperatorWithAnEmptySegment) {
             "alignment": { "mode": "segment", "range": [300, 400] } } ] })");
     CommandResult r = runCutaway("export " + scene.string() + " -o " + (m_dir / "e.nrrd").string());
     EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find("scalp flap: the segment of its alignment is empty"), std::string::npos)
+    EXPECT_NE(r.output.find(scene.string() + " (frame 0): /operators/0/alignment: scalp flap: the "
+                                             "segment of its alignment is empty"),
+              std::string::npos)
         << r.output;
     EXPECT_FALSE(std::filesystem::exists(m_dir / "e.nrrd"));
+    // A render refuses it alike, naming the file and the operator's place.
+    const auto second = write("e2.json", R"({ "version": 1,
+        "volume": { "phantom": "head", "size": [24, 24, 24] }, "render": { "size": [16, 16] },
+        "operators": [
+          { "type": "dilator", "placement": { "translate": [0, 0, -8], "scale": [8, 8, 6] } },
+          { "type": "peeler", "name": "flap", "placement": { "translate": [0, 0, 8], "scale": [16, 16, 6] },
+            "alignment": { "mode": "segment", "range": [300, 400] } } ] })");
+    CommandResult f = runCutaway("render " + second.string() + " -o " + (m_dir / "e.exr").string());
+    EXPECT_EQ(f.code, 2) << f.output;
+    EXPECT_NE(f.output.find(second.string() + ": /operators/1/alignment: flap: the segment"),
+              std::string::npos)
+        << f.output;
+    EXPECT_FALSE(std::filesystem::exists(m_dir / "e.exr"));
 }
 
 } // namespace cutaway::test
