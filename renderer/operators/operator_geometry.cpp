@@ -35,7 +35,9 @@ shader::OperatorParams sampledParams(const shader::OperatorParams& params, const
                                      glm::ivec3 resolution) {
     const glm::dvec3 texel = (box.hi - box.lo) / glm::dvec3(resolution);
     shader::OperatorParams p = params;
-    if (p.kind.x == CW_OP_PEELER) p.b.y = static_cast<float>(std::max({texel.x, texel.y, texel.z}));
+    // The peeler's gap is in its frame of equal units (x and y times X and Y).
+    if (p.kind.x == CW_OP_PEELER)
+        p.b.y = static_cast<float>(std::max({texel.x * p.b.z, texel.y * p.b.w, texel.z}));
     return p;
 }
 

@@ -29,9 +29,12 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
     u.mapLo = glm::vec4(glm::vec3(box.local.lo), 0.0f);
     u.mapHi = glm::vec4(glm::vec3(box.local.hi),
                         static_cast<float>(std::min({texel.x, texel.y, texel.z})));
-    // D of Eq. 7 from millimetres to local units: the mean scale of the frame.
+    // D of Eq. 7 from millimetres to the units of w: the mean scale of the
+    // frame; the peeler's w is in units of its half z (operators.h).
     const glm::dmat3 a(spec.localToWorld);
-    const double scale = (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
+    const double scale = spec.type == OperatorType::Peeler
+                             ? glm::length(a[2])
+                             : (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
     u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), static_cast<float>(index + 3),
                        0.0f, 0.0f); // id code: see slice_common.h
     const Alignment& al = spec.alignment;

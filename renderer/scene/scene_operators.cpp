@@ -68,8 +68,9 @@ void peeler(JsonReader& r, glm::dvec3 h, shader::OperatorParams& p) {
     const double radius = r.number("radius", 0.2 * h.z, Range::openClosed(0.0, 1e5));
     const double angle = r.number("angle", 120.0, Range::closed(0.0, 180.0));
     const double width = r.number("width", 2.0 * h.y, Range::openClosed(0.0, 1e5));
-    p.a = glm::vec4(f(hinge / h.x), f(thickness / h.z), f(radius / h.z), f(angle * kPi / 180.0));
-    p.b = glm::vec4(f(0.5 * width / h.y), 0.0f, 0.0f, 0.0f);
+    // In the peeler's frame of equal units, the box's half z (operators.h).
+    p.a = glm::vec4(f(hinge / h.z), f(thickness / h.z), f(radius / h.z), f(angle * kPi / 180.0));
+    p.b = glm::vec4(f(0.5 * width / h.z), 0.0f, f(h.x / h.z), f(h.y / h.z));
     p.kind.x = CW_OP_PEELER;
 }
 

@@ -5,7 +5,8 @@
 //   Local frame: the operator's box V_T = [-1, 1]^3, tissue surface toward +z.
 //   operatorForward(p, o)   T_F: where the material at p goes.
 //   operatorBackward(q, o)  T_B of Eq. 2 in its CONTINUOUS form (holes filled):
-//                           xyz = pre-image, w = signed distance (local units)
+//                           xyz = pre-image, w = signed distance (local units;
+//                           the peeler's in units of the box's half z)
 //                           to the cut surface: > 0 the point has a pre-image,
 //                           <= 0 it lies in a cut or opening (empty). Operators
 //                           without cuts return w = CW_NO_CUT.
@@ -38,7 +39,8 @@ CW_NAMESPACE_BEGIN
 
 // Parameters in local units (the box is 2 wide); meaning per type:
 //   peeler:    a = (hinge x, layer thickness, bend radius, fold angle in radians)
-//              b = (half width of the peel along y, 0, 0, 0)
+//              b = (half width of the peel along y, gap, box half x, box half y),
+//              all in units of the box's half z (see PEELER below)
 //   retractor: a = (half length of the incision along y, depth from the surface,
 //                   half opening width at the surface centre, 0)
 //   pliers:    a = (grasp centre xyz, radius of influence)
@@ -58,7 +60,15 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 
 // ---------------------------------------------------------------------------
 // PEELER: a bend (Barr 1984, "Global and local deformations of solid
-// primitives"). The layer x in (h, 1], |y| < halfWidth, depth e = 1 - z in
+// primitives"). A fold is rigid, so the peeler works in a frame of equal
+// units along its axes: local x and y times the box's aspect, X = b.z and
+// Y = b.w (its half extents over its half z), so that the box is [-X, X] x
+// [-Y, Y] x [-1, 1] and one unit is the box's half height along every axis.
+// The functions below take and give points of that frame; operatorForward,
+// operatorBackward and operatorJacobian convert (peelerToIso). In the unit
+// box's own units a box longer than high would fold its layer into an
+// ellipse, thicker by X and shorter by 1 / X once turned upright.
+// The layer x in (h, X], |y| < halfWidth, depth e = 1 - z in
 // [0, t] is cut free along its underside, its sides and its end (x = 1) and
 // wrapped around a cylinder whose axis is parallel to y through
 // c = (h, *, 1 + R): the layer point at arc length s = x - h goes to angle
@@ -68,21 +78,23 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 // sin theta). The skin (e = 0) ends up facing the cylinder, the underside
 // (e = t) outward. Arc length is kept on the skin; deeper material stretches
 // by (R + e) / R around the bend.
-//   a.x  h      hinge, in [-1, 1); the layer beyond it is lifted
+//   a.x  h      hinge, in [-X, X); the layer beyond it is lifted
 //   a.y  t      layer thickness, in (0, 2): below 2 the face z = -1 is untouched
 //   a.z  R      bend radius, > 0 (>= 1e-3 keeps the Jacobian well scaled)
 //   a.w  theta  fold angle, in [0, pi]; 0 is exactly the identity. Up to pi
 //               the flap overlaps neither itself nor the untouched material in
 //               the box (beyond pi its straight part would dive into it)
-//   b.x  halfWidth  half width along y, in (0, 1]; values above 1 act as 1
+//   b.x  halfWidth  half width along y, in (0, Y]; values above Y act as Y
 //   b.y  gap  half the gap carved where the flap meets untouched material:
 //             set by a bake to a texel of its map (operators::sampledParams), 0 in a
 //             scene's parameters (the analytic map is never interpolated)
-// Faces that stay fixed: x = -1, z = -1, and |y| = 1 when halfWidth < 1. The
-// top z = 1 and the end x = 1 are cuts (the flap leaves them). A thick layer
-// ((1 - h)^2 + R^2 < (R + t)^2) bends its underside through the material past
-// x = 1 below z = 1, and for small theta the lower edge of the flap's end
-// swings up to about t * theta past x = 1: where the flap is, it wins, and a
+//   b.z  X      the box's half extent along x over its half extent along z, > 0
+//   b.w  Y      the same along y, > 0
+// Faces that stay fixed: x = -X, z = -1, and |y| = Y when halfWidth < Y. The
+// top z = 1 and the end x = X are cuts (the flap leaves them). A thick layer
+// ((X - h)^2 + R^2 < (R + t)^2) bends its underside through the material past
+// x = X below z = 1, and for small theta the lower edge of the flap's end
+// swings up to about t * theta past x = X: where the flap is, it wins, and a
 // baked map carves a gap in the material around it (b.y, see below).
 //
 // Backward map (continuous version): on the flap, its pre-image; elsewhere
@@ -92,7 +104,7 @@ CW_FUNC float distanceToBox(vec3 q, vec3 lo, vec3 hi) {
 //   flap:     + min(distance to its underside, its sides, its end face). The
 //             skin (e = 0) is not a cut, and neither is the hinge.
 //   hole:     - min(distance to the hole's bottom, sides, end and hinge
-//             planes, distance to the flap): the lifted region x in (h, 1],
+//             planes, distance to the flap): the lifted region x in (h, X],
 //             |y| < halfWidth, z in [1 - t, 1], where the flap is not. Where
 //             the flap passes within 2 gap of those faces, the material it
 //             carves there (below) does not count (peelerClearance).
@@ -120,15 +132,29 @@ CW_FUNC vec3 peelerTangent(float phi) {
     return vec3(cos(phi), 0.0f, sin(phi));
 }
 
-// The half width actually lifted: the box ends at |y| = 1.
+// The box's end along x, X.
+CW_FUNC float peelerEnd(OperatorParams o) {
+    return o.b.z;
+}
+
+// The half width actually lifted: the box ends at |y| = Y.
 CW_FUNC float peelerHalfWidth(OperatorParams o) {
-    return min(o.b.x, 1.0f);
+    return min(o.b.x, o.b.w);
+}
+
+// Local (unit box) coordinates to the peeler's frame of equal units, and back.
+CW_FUNC vec3 peelerToIso(vec3 p, OperatorParams o) {
+    return vec3(p.x * o.b.z, p.y * o.b.w, p.z);
+}
+
+CW_FUNC vec3 peelerFromIso(vec3 q, OperatorParams o) {
+    return vec3(q.x / o.b.z, q.y / o.b.w, q.z);
 }
 
 // Angle at which the flap ends on its bend (the fold angle if the flap is
 // longer than the bend), and the length of its straight part.
 CW_FUNC vec2 peelerFlapEnd(OperatorParams o) {
-    float flapLength = 1.0f - o.a.x;
+    float flapLength = peelerEnd(o) - o.a.x;
     float phiEnd = min(o.a.w, flapLength / o.a.z);
     return vec2(phiEnd, max(flapLength - o.a.z * phiEnd, 0.0f));
 }
@@ -139,7 +165,8 @@ CW_FUNC vec3 peelerForward(vec3 p, OperatorParams o) {
     float radius = o.a.z;
     float s = p.x - h;
     float e = 1.0f - p.z;
-    bool lifted = s > 0.0f && p.x <= 1.0f && abs(p.y) < peelerHalfWidth(o) && e >= 0.0f && e <= t;
+    bool lifted =
+        s > 0.0f && p.x <= peelerEnd(o) && abs(p.y) < peelerHalfWidth(o) && e >= 0.0f && e <= t;
     if (!lifted) return p;
     float phi = min(s / radius, o.a.w);
     vec3 axis = vec3(h, 0.0f, 1.0f + radius);
@@ -203,8 +230,8 @@ CW_FUNC vec3 peelerFlapCoords(vec3 q, OperatorParams o) {
         e = length(v) - radius;
         part = 0.0f;
     }
-    bool on =
-        s >= 0.0f && s <= 1.0f - o.a.x && e >= 0.0f && e <= o.a.y && abs(q.y) < peelerHalfWidth(o);
+    bool on = s >= 0.0f && s <= peelerEnd(o) - o.a.x && e >= 0.0f && e <= o.a.y &&
+              abs(q.y) < peelerHalfWidth(o);
     return vec3(s, e, on ? part : part - 2.0f);
 }
 
@@ -231,16 +258,18 @@ CW_FUNC float peelerHoleFaceDistance(vec3 q, OperatorParams o) {
     float h = o.a.x;
     float floorZ = 1.0f - o.a.y;
     float hw = peelerHalfWidth(o);
-    float bottom = distanceToBox(q, vec3(h, -hw, floorZ), vec3(1.0f, hw, floorZ));
-    float side = distanceToBox(vec3(q.x, abs(q.y), q.z), vec3(h, hw, floorZ), vec3(1.0f, hw, 1.0f));
-    float endFace = distanceToBox(q, vec3(1.0f, -hw, floorZ), vec3(1.0f, hw, 1.0f));
+    float x1 = peelerEnd(o);
+    float bottom = distanceToBox(q, vec3(h, -hw, floorZ), vec3(x1, hw, floorZ));
+    float side = distanceToBox(vec3(q.x, abs(q.y), q.z), vec3(h, hw, floorZ), vec3(x1, hw, 1.0f));
+    float endFace = distanceToBox(q, vec3(x1, -hw, floorZ), vec3(x1, hw, 1.0f));
     return min(min(bottom, side), endFace);
 }
 
 // Whether q lies in the hole the flap left.
 CW_FUNC bool peelerInHole(vec3 q, OperatorParams o) {
     float hw = peelerHalfWidth(o);
-    return q.x > o.a.x && q.x <= 1.0f && abs(q.y) < hw && q.z >= 1.0f - o.a.y && q.z <= 1.0f;
+    return q.x > o.a.x && q.x <= peelerEnd(o) && abs(q.y) < hw && q.z >= 1.0f - o.a.y &&
+           q.z <= 1.0f;
 }
 
 // Distance from q, in the hole or the air, to what the operator leaves alone:
@@ -249,8 +278,9 @@ CW_FUNC bool peelerInHole(vec3 q, OperatorParams o) {
 CW_FUNC float peelerUntouchedDistance(vec3 q, OperatorParams o) {
     float h = o.a.x;
     float hw = peelerHalfWidth(o);
-    bool overHole = q.x > h && q.x < 1.0f && abs(q.y) < hw;
-    float rim = overHole ? min(min(q.x - h, 1.0f - q.x), hw - abs(q.y)) : 0.0f;
+    float x1 = peelerEnd(o);
+    bool overHole = q.x > h && q.x < x1 && abs(q.y) < hw;
+    float rim = overHole ? min(min(q.x - h, x1 - q.x), hw - abs(q.y)) : 0.0f;
     if (q.z > 1.0f) return length(vec2(q.z - 1.0f, rim));
     return min(rim, q.z - (1.0f - o.a.y));
 }
@@ -616,7 +646,7 @@ CW_FUNC int operatorKind(OperatorParams o) {
 CW_FUNC bool operatorIsIdentity(OperatorParams o) {
     int kind = operatorKind(o);
     if (kind == CW_OP_PEELER)
-        return !(o.a.w > 0.0f && o.a.y > 0.0f && o.b.x > 0.0f && o.a.x < 1.0f);
+        return !(o.a.w > 0.0f && o.a.y > 0.0f && o.b.x > 0.0f && o.a.x < o.b.z);
     if (kind == CW_OP_RETRACTOR) return !(o.a.z > 0.0f && o.a.x > 0.0f && o.a.y > 0.0f);
     if (kind == CW_OP_PLIERS) return !(dot(vec3(o.b), vec3(o.b)) > 0.0f && o.a.w > 0.0f);
     if (kind == CW_OP_DILATOR) return o.a.y == 1.0f;
@@ -629,8 +659,9 @@ CW_FUNC bool operatorIsIdentity(OperatorParams o) {
 CW_FUNC bool operatorParamsValid(OperatorParams o) {
     int kind = operatorKind(o);
     if (kind == CW_OP_PEELER)
-        return o.a.x >= -1.0f && o.a.x < 1.0f && o.a.y > 0.0f && o.a.y < 2.0f && o.a.z > 0.0f &&
-               o.a.w >= 0.0f && o.a.w <= 3.14159265f && o.b.x > 0.0f;
+        return o.b.z > 0.0f && o.b.w > 0.0f && o.a.x >= -o.b.z && o.a.x < o.b.z && o.a.y > 0.0f &&
+               o.a.y < 2.0f && o.a.z > 0.0f && o.a.w >= 0.0f && o.a.w <= 3.14159265f &&
+               o.b.x > 0.0f;
     if (kind == CW_OP_RETRACTOR)
         return o.a.x > 0.0f && o.a.x <= 1.0f && o.a.y > 0.0f && o.a.y <= 2.0f && o.a.z >= 0.0f &&
                o.a.z < 1.0f;
@@ -647,7 +678,7 @@ CW_FUNC bool operatorParamsValid(OperatorParams o) {
 CW_FUNC vec3 operatorForward(vec3 p, OperatorParams o) {
     if (operatorIsIdentity(o)) return p;
     int kind = operatorKind(o);
-    if (kind == CW_OP_PEELER) return peelerForward(p, o);
+    if (kind == CW_OP_PEELER) return peelerFromIso(peelerForward(peelerToIso(p, o), o), o);
     if (kind == CW_OP_RETRACTOR) return retractorForward(p, o);
     if (kind == CW_OP_PLIERS) return pliersForward(p, o);
     return dilatorForward(p, o);
@@ -656,7 +687,10 @@ CW_FUNC vec3 operatorForward(vec3 p, OperatorParams o) {
 CW_FUNC vec4 operatorBackward(vec3 q, OperatorParams o) {
     if (operatorIsIdentity(o)) return vec4(q, CW_NO_CUT);
     int kind = operatorKind(o);
-    if (kind == CW_OP_PEELER) return peelerBackward(q, o);
+    if (kind == CW_OP_PEELER) {
+        vec4 b = peelerBackward(peelerToIso(q, o), o);
+        return vec4(peelerFromIso(vec3(b), o), b.w);
+    }
     if (kind == CW_OP_RETRACTOR) return retractorBackward(q, o);
     if (kind == CW_OP_PLIERS) return pliersBackward(q, o);
     return dilatorBackward(q, o);
@@ -665,7 +699,12 @@ CW_FUNC vec4 operatorBackward(vec3 q, OperatorParams o) {
 CW_FUNC mat3 operatorJacobian(vec3 q, OperatorParams o) {
     if (operatorIsIdentity(o)) return mat3(1.0f);
     int kind = operatorKind(o);
-    if (kind == CW_OP_PEELER) return peelerJacobian(q, o);
+    if (kind == CW_OP_PEELER) { // S^-1 J S, S = diag(X, Y, 1)
+        mat3 s = mat3(vec3(o.b.z, 0.0f, 0.0f), vec3(0.0f, o.b.w, 0.0f), vec3(0.0f, 0.0f, 1.0f));
+        mat3 sInverse = mat3(vec3(1.0f / o.b.z, 0.0f, 0.0f), vec3(0.0f, 1.0f / o.b.w, 0.0f),
+                             vec3(0.0f, 0.0f, 1.0f));
+        return sInverse * peelerJacobian(peelerToIso(q, o), o) * s;
+    }
     if (kind == CW_OP_RETRACTOR) return retractorJacobian(q, o);
     if (kind == CW_OP_PLIERS) return pliersJacobian(q, o);
     return dilatorJacobian(q, o);

@@ -160,9 +160,10 @@ TEST(ExportAlignment, SegmentByRangeKeepsTheValuesInTheRange) {
     // is the feature is empty (Eq. 4), and one whose trilinear sample leans
     // on skull voxels reads them without the skull's values. So the skull's
     // values are where the scan has them and nowhere else. Without alignment
-    // the flap carries them up (about 1000 voxels more than the scan has);
-    // ignoring M at p0 adds about 2000, sampling the scan's own values at
-    // moved points about 150.
+    // the flap carries them up (229 voxels more than the scan has; about 1000
+    // when the peeler folded in its box's units, 1.7x too thick); ignoring M
+    // at p0 added about 2000, sampling the scan's own values at moved points
+    // about 150 (with that thicker flap).
     const auto bright = [](const Volume& v) {
         int n = 0;
         for (std::size_t i = 0; i < v.voxelCount(); ++i)
@@ -170,7 +171,7 @@ TEST(ExportAlignment, SegmentByRangeKeepsTheValuesInTheRange) {
         return n;
     };
     const int carried = bright(e.axis) - bright(e.input);
-    EXPECT_GT(carried, 300) << "control: the flap carries the skull without alignment";
+    EXPECT_GT(carried, 150) << "control: the flap carries the skull without alignment";
     EXPECT_EQ(bright(e.aligned), bright(e.input));
 }
 

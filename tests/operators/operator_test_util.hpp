@@ -20,7 +20,7 @@ inline OperatorParams peelerParams(float hinge, float thickness, float radius, f
                                    float halfWidth) {
     OperatorParams o{};
     o.a = glm::vec4(hinge, thickness, radius, angle);
-    o.b = glm::vec4(halfWidth, 0.0f, 0.0f, 0.0f);
+    o.b = glm::vec4(halfWidth, 0.0f, 1.0f, 1.0f); // a cube: its frame is the unit box's
     o.kind.x = CW_OP_PEELER;
     return o;
 }
