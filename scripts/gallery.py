@@ -42,7 +42,8 @@ GALLERY = [
      "The retractor keeps the organs (segment-aligned) while the rest spreads; pliers pull "
      "an eye; glTF retractor blades and forceps move with their operators.", None),
     ("fig12_orange_stages", "Figure 12: an orange peeled in stages",
-     "Four frames of one scene: an animation track opens each flap in turn.", [0, 1, 2, 3]),
+     "Four frames of one scene: an animation track opens each surface-aligned flap in turn, "
+     "lifting the rind and pith off the segments.", [0, 1, 2, 3]),
     ("turntable_peeled_head", "Turntable of a peeled head",
      "36 frames orbiting `ct_head` with a surface-aligned scalp flap (every ninth shown).",
      [0, 9, 18, 27]),
