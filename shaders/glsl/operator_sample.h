@@ -83,6 +83,7 @@ struct Resolved {
     vec3 tc;       // texture coordinate of p (transformed or masked)
     float value;   // the volume there
     float cutW;    // the map's signed cut distance at p'
+    float shift;   // how far the map moves material to p', in texels of the map
     float feature; // the feature field at tc (alignment other than axis)
     float m0;      // the mask M at p0 and at p' (0 with axis alignment)
     float mPrime;
@@ -115,18 +116,32 @@ Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int mode
     }
     r.feature = masked ? fPrime : f0;
     r.cutW = p0.w;
+    r.shift = length((op.worldToLocal * vec4(p0.xyz - world, 0.0)).xyz) / op.mapHi.w;
     r.m0 = m0;
     r.mPrime = mPrime;
     return r;
 }
 
+// How much the feature's break is there at a point: Eq. 9 and 10 turn the
+// normal toward the feature where material above it moved off or was cut
+// away, so only where the map moves material (by a texel or more) or near a
+// cut (within the band D, fading out over another D). Elsewhere in the box
+// nothing parts at the feature, and the volume's own normal is right: an
+// operator that moves nothing then renders as no operator, and a box whose
+// displacement fades to 0 at its faces shows no seam there.
+float breakWeight(OperatorUniforms op, Resolved r) {
+    float band = max(op.band.x, op.mapHi.w);
+    return max(clamp(r.shift, 0.0, 1.0), clamp(2.0 - r.cutW / band, 0.0, 1.0));
+}
+
 // The source-space gradient at p (data gradient, with Eq. 9 / 10 applied);
-// f is the feature field at p, whose texture coordinate is tc.
+// f is the feature field at p, whose texture coordinate is tc; `weight` the
+// break's (breakWeight).
 vec4 featureGradient(OperatorUniforms op, sampler3D feature, int mode, vec4 g, float f, vec3 tc,
-                     bool moved) {
+                     bool moved, float weight) {
     if (mode == CW_ALIGN_AXIS) return g;
     if (mode == CW_ALIGN_SURFACE) {
-        float beta = surfaceBeta(f, op.align.y, op.align.z);
+        float beta = weight * surfaceBeta(f, op.align.y, op.align.z);
         if (beta == 0.0) return g;
         return vec4(surfaceNormal(g.xyz, featureDirection(op, feature, tc), beta),
                     mix(g.w, 1.0, abs(beta)));
@@ -218,7 +233,13 @@ Slab operatorSlab(Resolved front, Resolved back) {
         s.shadeAt = 0.5 * s.kept;
     } else {
         s.backValue = back.value;
-        if (back.which == front.which) { // the middle, halfway: exact where the map is affine
+        // The middle, halfway: exact where the map is affine, and where the
+        // slab crosses from material that moves to material kept in place
+        // (or back) where the map moves nothing (both ends resolve near p').
+        // Shaded at its front there, a slab across the feature's surface lit
+        // the skin over it a half slab off: a speckle where nothing moved.
+        bool contiguous = max(front.shift, back.shift) < 0.25;
+        if (back.which == front.which || contiguous) {
             s.middle.tc = 0.5 * (front.tc + back.tc);
             s.middle.feature = 0.5 * (front.feature + back.feature);
             s.wFar = back.cutW;
@@ -246,7 +267,7 @@ vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D feature, in
     // One gradient fetch and one feature gradient for both cases below: on
     // SIMD CPUs both sides of a branch run, so a call in each would cost twice.
     vec4 g = featureGradient(op, feature, mode, textureLod(gradientTex, s.middle.tc, 0.0),
-                             s.middle.feature, s.middle.tc, !masked);
+                             s.middle.feature, s.middle.tc, !masked, breakWeight(op, s.middle));
     if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
         vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
         return shade(c, n, toEye);
