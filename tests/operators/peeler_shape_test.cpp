@@ -14,10 +14,11 @@ namespace {
 
 // A peeler in a box of `scale` mm, parsed as a scene gives it.
 OperatorSpec parsedPeeler(const std::string& scale, const std::string& params) {
-    const Scene scene = parseScene(nlohmann::json::parse(R"({"version": 1, "volume": {"phantom": "head"},
-        "operators": [{"type": "peeler", "placement": {"scale": )" + scale +
-                                                         R"(}, "params": )" + params + "}]}"),
-                                   "/nonexistent", "peeler shape test");
+    const Scene scene =
+        parseScene(nlohmann::json::parse(R"({"version": 1, "volume": {"phantom": "head"},
+        "operators": [{"type": "peeler", "placement": {"scale": )" +
+                                         scale + R"(}, "params": )" + params + "}]}"),
+                   "/nonexistent", "peeler shape test");
     return scene.operators.at(0);
 }
 
