@@ -204,7 +204,7 @@ struct Slab {
     float wNear, wFar; // w at the ends of the kept part
 };
 
-Slab operatorSlab(Resolved front, Resolved back) {
+Slab operatorSlab(int mode, Resolved front, Resolved back) {
     Slab s;
     bool frontEmpty = front.which == CW_CASE_EMPTY;
     s.empty = frontEmpty;
@@ -238,7 +238,9 @@ Slab operatorSlab(Resolved front, Resolved back) {
         // (or back) where the map moves nothing (both ends resolve near p').
         // Shaded at its front there, a slab across the feature's surface lit
         // the skin over it a half slab off: a speckle where nothing moved.
-        bool contiguous = max(front.shift, back.shift) < 0.25;
+        // Not with segment alignment: there the two sides read different
+        // values even where nothing moves, and its rims stayed crisper.
+        bool contiguous = mode != CW_ALIGN_SEGMENT && max(front.shift, back.shift) < 0.25;
         if (back.which == front.which || contiguous) {
             s.middle.tc = 0.5 * (front.tc + back.tc);
             s.middle.feature = 0.5 * (front.feature + back.feature);

@@ -225,7 +225,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler
                 haveFront = true;
                 continue;
             }
-            s = operatorSlab(front, cwPreintegrated ? next : front);
+            s = operatorSlab(mode, front, cwPreintegrated ? next : front);
             if (!s.empty && mayShow(s.frontValue, s.backValue)) break;
             front = next;
             k += 1.0;

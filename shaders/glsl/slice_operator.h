@@ -22,7 +22,8 @@ void main() {
     if (cwPreintegrated)
         back = resolve(op, operatorMap, featureTex, cwAlignment, worldPos - toEye * stepMm);
     bool moved;
-    vec4 c = shadeOperatorSlab(op, operatorMap, featureTex, cwAlignment, operatorSlab(front, back),
-                               worldPos, toEye, obliquity, stepMm, moved);
+    vec4 c = shadeOperatorSlab(op, operatorMap, featureTex, cwAlignment,
+                               operatorSlab(cwAlignment, front, back), worldPos, toEye, obliquity,
+                               stepMm, moved);
     emit(c, moved ? op.band.y : CW_ID_BACKGROUND);
 }
