@@ -233,6 +233,14 @@ Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent
     return image;
 }
 
+Image createStorageVolume(const Context& ctx, VkFormat format, VkExtent3D extent, const void* data,
+                          std::size_t bytes, VkPipelineStageFlags2 readers) {
+    Image image = createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
+                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    uploadImage(ctx, image, data, bytes, VK_IMAGE_LAYOUT_GENERAL, readers);
+    return image;
+}
+
 std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkImageLayout layout,
                                      std::size_t bytesPerTexel) {
     const std::size_t bytes = bytesPerTexel * image.extent.width * image.extent.height *

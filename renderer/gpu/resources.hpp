@@ -85,6 +85,13 @@ Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent
 Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent, const void* data,
                           std::size_t bytes, VkPipelineStageFlags2 readers);
 
+/// A storage 3D image of `format` holding `bytes` of tightly packed texels (x
+/// fastest), left GENERAL for `readers` (shaders read it with imageLoad: on
+/// lavapipe an inline load, where a sampled texel fetch is a function call).
+/// Blocks until done.
+Image createStorageVolume(const Context& ctx, VkFormat format, VkExtent3D extent, const void* data,
+                          std::size_t bytes, VkPipelineStageFlags2 readers);
+
 /// Copies a whole image back to the host (tests and tools; blocks). The image
 /// must be in `layout` (and readable by transfers after `srcStage`) and is
 /// left in it.

@@ -27,6 +27,10 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
     : m_ctx(ctx), m_linear(linear), m_nearest(nearest) {
     const auto cs = VK_SHADER_STAGE_COMPUTE_BIT;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    // The cells and blocks are storage images: the rays read one texel at
+    // every sample, and on lavapipe imageLoad is an inline load where a
+    // sampled texelFetch is a call (docs/performance.md).
+    const auto storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     m_setLayout =
         gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
                                    {1, sampled, 1, cs, nullptr},
@@ -34,11 +38,11 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                    {3, sampled, 1, cs, nullptr},
                                    {4, sampled, 1, cs, nullptr},
                                    {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                   {6, sampled, 1, cs, nullptr},
+                                   {6, storage, 1, cs, nullptr},
                                    {8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
-                                   {9, sampled, 1, cs, nullptr},
-                                   {10, sampled, 1, cs, nullptr},
-                                   {11, sampled, 1, cs, nullptr},
+                                   {9, storage, 1, cs, nullptr},
+                                   {10, storage, 1, cs, nullptr},
+                                   {11, storage, 1, cs, nullptr},
                                    {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
                                    {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
                                    {14, sampled, 1, cs, nullptr}});
@@ -58,8 +62,8 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
-                                                         {sampled, 9},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+                                                         {sampled, 5},
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 6},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
@@ -75,8 +79,8 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
                                m_visible.buffer.get(), m_visible.size);
     gpu::writeImageDescriptor(m_ctx, set.set, 14, sampled, in.meshDepth, in.meshDepthLayout,
                               m_nearest);
-    gpu::writeImageDescriptor(m_ctx, set.set, 6, sampled, m_cells.distance.view.get(), ro,
-                              m_nearest);
+    gpu::writeImageDescriptor(m_ctx, set.set, 6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              m_cells.distance.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeBufferDescriptor(m_ctx, set.set, 8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                m_operatorUniforms.buffer.get(), m_operatorUniforms.size);
     // Slots without an operator repeat the first one's, or the cells' (unread,
@@ -85,8 +89,9 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
         const VkImageView blocks = operators.empty()      ? m_cells.distance.view.get()
                                    : i < operators.size() ? operators[i].blocks
                                                           : operators[0].blocks;
-        gpu::writeImageDescriptor(m_ctx, set.set, static_cast<uint32_t>(9 + i), sampled, blocks, ro,
-                                  m_nearest);
+        gpu::writeImageDescriptor(m_ctx, set.set, static_cast<uint32_t>(9 + i),
+                                  VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, blocks,
+                                  VK_IMAGE_LAYOUT_GENERAL);
     }
     return set;
 }
@@ -139,7 +144,7 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
     }
     const glm::uvec3 n(cells.cells);
     m_cells.distance =
-        gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, cells.distance.data(),
+        gpu::createStorageVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, cells.distance.data(),
                                  cells.distance.size(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     m_cells.perTexture = glm::vec4((volume.box.hi - volume.box.lo) / cellMm, double(margin) + 0.5);
     m_cells.bounds = {volume.box.lo + glm::dvec3(cells.lo) * cellMm,

@@ -13,7 +13,7 @@ VkImageView SliceRenderer::blocksFor(std::size_t index, const GpuOperator& op, d
     const auto distances = [&](glm::ivec3 dims, const std::vector<uint8_t>& active) {
         const std::vector<uint8_t> d = chessboardDistance(dims, active);
         const glm::uvec3 n(dims);
-        return gpu::createSampledVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, d.data(),
+        return gpu::createStorageVolume(m_ctx, VK_FORMAT_R8_UINT, {n.x, n.y, n.z}, d.data(),
                                         d.size(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     };
     if (!m_operatorSkipping) { // one active block over the whole box

@@ -48,7 +48,7 @@ void composite(vec4 c, float code, inout vec4 sum, inout float id) {
 // cell is occupied; else r, and every cell within r - 1 of it (chessboard
 // distance) is empty: each sample there, and each slab up to the margin long
 // that starts there, is transparent.
-layout(set = 0, binding = 6) uniform usampler3D cellTex;
+layout(set = 0, binding = 6, r8ui) uniform readonly uimage3D cellImage;
 // Which bins of the classification tables any layer shows (VisibleValues,
 // render/occupancy.hpp): visibleUpTo[i] counts the visible bins before bin i.
 // Transparent runs ask only that; the table is read once a slab may show.
@@ -97,27 +97,38 @@ vec2 rayThroughBox(vec3 origin, vec3 dir, vec3 lo, vec3 hi) {
     return vec2(max(max(tMin.x, tMin.y), max(tMin.z, 0.0)), min(min(tMax.x, tMax.y), tMax.z));
 }
 
-// How many steps of `step` (in cells) a ray at `at` (in cells, inside `cell`)
-// takes to leave the cube of empty cells [cell - (r - 1), cell + r): the
-// first sample past its wall, at least 1.
-float stepsToLeave(vec3 at, ivec3 cell, uint r, vec3 step) {
+// How many steps (of `step` cells each; `invStep` its reciprocal, 0 where it
+// is 0) a ray at `at` (in cells, inside `cell`) takes to leave the cube of
+// empty cells [cell - (r - 1), cell + r): the first sample past its wall, at
+// least 1. A multiplication by the ray's reciprocal instead of three
+// divisions per sample (lavapipe runs this for every sample its lanes take);
+// the product may round up past a whole number, so a hair is taken off before
+// rounding up: the step may land one sample short of the wall, never past it.
+float stepsToLeave(vec3 at, ivec3 cell, uint r, vec3 step, vec3 invStep) {
     vec3 wall =
         vec3(cell) + mix(vec3(1.0 - float(r)), vec3(float(r)), greaterThan(step, vec3(0.0)));
-    vec3 toWall = mix(vec3(1e30), (wall - at) / step, greaterThan(abs(step), vec3(1e-12)));
-    return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z))));
+    vec3 toWall = mix(vec3(1e30), (wall - at) * invStep, notEqual(invStep, vec3(0.0)));
+    return max(1.0, ceil(min(toWall.x, min(toWall.y, toWall.z)) - 1e-4));
+}
+
+// The reciprocal of each component of `step` (in cells), 0 where the ray does
+// not move along that axis.
+vec3 reciprocalStep(vec3 step) {
+    return mix(vec3(0.0), 1.0 / step, greaterThan(abs(step), vec3(1e-12)));
 }
 
 // How many steps of `tcStep` from `tc` until the ray leaves the cube of empty
 // cells around the cell it is in, when that cell is empty and the ray's slabs
 // are no longer than the cells' margin; 0 otherwise. Never steps past a sample
 // outside the cube, so it skips only samples (and the slabs they start) that
-// the cells say are transparent.
-float stepsOverEmpty(vec3 tc, vec3 tcStep, bool slabsInMargin) {
+// the cells say are transparent. `cellStep`: tcStep in cells, `invCellStep`
+// its reciprocal (reciprocalStep).
+float stepsOverEmpty(vec3 tc, vec3 cellStep, vec3 invCellStep, bool slabsInMargin) {
     vec3 at = tc * ray.cellsPerTexture.xyz;
-    ivec3 cell = clamp(ivec3(floor(at)), ivec3(0), textureSize(cellTex, 0) - 1);
-    uint free = texelFetch(cellTex, cell, 0).r;
+    ivec3 cell = clamp(ivec3(floor(at)), ivec3(0), imageSize(cellImage) - 1);
+    uint free = imageLoad(cellImage, cell).r;
     if (!slabsInMargin || free == 0u) return 0.0;
-    return stepsToLeave(at, cell, free, tcStep * ray.cellsPerTexture.xyz);
+    return stepsToLeave(at, cell, free, cellStep, invCellStep);
 }
 
 // Whether a slab from value `front` to `back` may show: some bin of the table
@@ -137,6 +148,8 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
     float k = k0;
     vec3 tc = m.tcFirst + (k0 - m.first) * m.tcStep;
     vec3 tcStep = m.tcStep;
+    vec3 cellStep = tcStep * ray.cellsPerTexture.xyz;
+    vec3 invCellStep = reciprocalStep(cellStep);
     float front = textureLod(volumeTex, tc, 0.0).r;
     bool haveFront = true; // false after stepping over empty cells
     while (k <= k1) {
@@ -146,7 +159,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         // or done.
         float next = 0.0;
         while (k <= k1) {
-            float skip = stepsOverEmpty(tc, tcStep, m.slabsInMargin);
+            float skip = stepsOverEmpty(tc, cellStep, invCellStep, m.slabsInMargin);
             if (skip > 0.0) {
                 k += skip;
                 tc += skip * tcStep;
@@ -178,6 +191,18 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
 }
 
 #ifdef CW_RAY_OPERATORS
+layout(set = 0, binding = 9, r8ui) uniform readonly uimage3D blocks0;
+layout(set = 0, binding = 10, r8ui) uniform readonly uimage3D blocks1;
+layout(set = 0, binding = 11, r8ui) uniform readonly uimage3D blocks2;
+// Slot `slot`'s block texel at `block` (clamped), and the blocks' size. GLSL
+// takes no image with a format as a parameter; each call passes a constant,
+// so the compiler keeps one load.
+uint blockAt(int slot, ivec3 block) {
+    if (slot == 0) return imageLoad(blocks0, clamp(block, ivec3(0), imageSize(blocks0) - 1)).r;
+    if (slot == 1) return imageLoad(blocks1, clamp(block, ivec3(0), imageSize(blocks1) - 1)).r;
+    return imageLoad(blocks2, clamp(block, ivec3(0), imageSize(blocks2) - 1)).r;
+}
+
 // How many samples from `k` on lie in the cube of empty blocks of the
 // operator around the block that p(k) is in (render/operator_regions.hpp:
 // blocks of map texels where the operator shader, reading up to a slab from
@@ -185,23 +210,24 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
 // nearest active block, 0 when active): 0 when that block is active. Like
 // stepsOverEmpty, never past a sample outside the cube.
 // `blockStep`: the step from one sample to the next, in blocks.
-float stepsOverEmptyBlocks(OperatorUniforms op, usampler3D blocks, March m, float k,
-                           vec3 blockStep) {
+float stepsOverEmptyBlocks(OperatorUniforms op, int slot, March m, float k, vec3 blockStep,
+                           vec3 invBlockStep) {
     vec3 q = (op.worldToLocal * vec4(pointAt(m, k), 1.0)).xyz;
     vec3 at = (q - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz) * op.blocks.xyz;
-    ivec3 block = clamp(ivec3(floor(at)), ivec3(0), textureSize(blocks, 0) - 1);
-    uint free = texelFetch(blocks, block, 0).r;
+    ivec3 block = ivec3(floor(at));
+    uint free = blockAt(slot, block);
     if (free == 0u) return 0.0;
-    return stepsToLeave(at, block, free, blockStep);
+    return stepsToLeave(at, block, free, blockStep, invBlockStep);
 }
 
 // Samples k0..k1, all in the operator's deformed box, composited into `sum`.
 // Each resolves one point: a slab's back is the next one's front.
-void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler3D blocks, int mode,
-                 March m, float k0, float k1, inout vec4 sum, inout float id) {
+void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot, int mode, March m,
+                 float k0, float k1, inout vec4 sum, inout float id) {
     float stepMm = m.spacing * m.obliquity;
     vec3 blockStep = mat3(op.worldToLocal) * (m.dir * (m.spacing / m.fd)) /
                      (op.mapHi.xyz - op.mapLo.xyz) * op.blocks.xyz;
+    vec3 invBlockStep = reciprocalStep(blockStep);
     float k = k0;
     Resolved front;
     bool haveFront = false; // false at first and after stepping over empty blocks
@@ -213,7 +239,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, usampler
         // One resolve per pass for every lane (of the front after a jump, or
         // of the next back), so lanes in lock-step keep together.
         while (k <= k1) {
-            float skip = stepsOverEmptyBlocks(op, blocks, m, k, blockStep);
+            float skip = stepsOverEmptyBlocks(op, slot, m, k, blockStep, invBlockStep);
             if (skip > 0.0) {
                 k += skip;
                 haveFront = false;
@@ -257,9 +283,6 @@ layout(set = 2, binding = 2) uniform sampler3D feature1;
 layout(set = 3, binding = 1) uniform sampler3D map2;
 layout(set = 3, binding = 2) uniform sampler3D feature2;
 // Each slot's blocks' distances (see stepsOverEmptyBlocks).
-layout(set = 0, binding = 9) uniform usampler3D blocks0;
-layout(set = 0, binding = 10) uniform usampler3D blocks1;
-layout(set = 0, binding = 11) uniform usampler3D blocks2;
 
 // Samples first..last of both runs `a` and `b` (first > last: none).
 vec2 unite(vec2 a, vec2 b) {
@@ -305,8 +328,7 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
         float after = hit ? box0.y + 1.0 : samples.y + 1.0;
         backgroundRun(m, max(samples.x, volume.x), min(before, volume.y), sum, id);
         if (sum.a < CW_OPAQUE_ALPHA)
-            operatorRun(slots.ops[0], map0, feature0, blocks0, cwAlignment, m, box0.x, box0.y, sum,
-                        id);
+            operatorRun(slots.ops[0], map0, feature0, 0, cwAlignment, m, box0.x, box0.y, sum, id);
         if (sum.a < CW_OPAQUE_ALPHA) backgroundRun(m, max(after, volume.x), volume.y, sum, id);
     } else {
         // Each pass: the untouched volume up to the next box, then that box
@@ -328,13 +350,11 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
                 runFrom(k, box2, 2, slot, end);
             }
             if (slot == 0) {
-                operatorRun(slots.ops[0], map0, feature0, blocks0, cwAlignment, m, k, end, sum, id);
+                operatorRun(slots.ops[0], map0, feature0, 0, cwAlignment, m, k, end, sum, id);
             } else if (cwOperatorCount > 1 && slot == 1) {
-                operatorRun(slots.ops[1], map1, feature1, blocks1, cwAlignment1, m, k, end, sum,
-                            id);
+                operatorRun(slots.ops[1], map1, feature1, 1, cwAlignment1, m, k, end, sum, id);
             } else if (cwOperatorCount > 2 && slot == 2) {
-                operatorRun(slots.ops[2], map2, feature2, blocks2, cwAlignment2, m, k, end, sum,
-                            id);
+                operatorRun(slots.ops[2], map2, feature2, 2, cwAlignment2, m, k, end, sum, id);
             }
             k = end + 1.0;
         }
