@@ -237,8 +237,7 @@ gpu::DescriptorSet FeatureBaker::makeSet(const gpu::Image& texture, const gpu::I
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}});
     gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                              texture.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                              m_sampler.get());
+                              texture.view.get(), kValuesLayout, m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, src.view.get(),
                               VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeImageDescriptor(m_ctx, set.set, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, dst.view.get(),

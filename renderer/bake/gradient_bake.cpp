@@ -1,5 +1,6 @@
 #include "bake/gradient_bake.hpp"
 
+#include "bake/volume_upload.hpp"
 #include "gpu/pipeline.hpp"
 #include "gradient_comp.spv.h"
 #include "shared/gradient.h"
@@ -28,8 +29,7 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing) con
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
     gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                              values.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                              m_sampler.get());
+                              values.view.get(), kValuesLayout, m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
                               VK_IMAGE_LAYOUT_GENERAL);
 

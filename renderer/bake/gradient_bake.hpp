@@ -14,7 +14,7 @@ class GradientBaker {
 public:
     explicit GradientBaker(const gpu::Context& ctx);
 
-    /// `values` is the uploaded volume (SHADER_READ_ONLY_OPTIMAL). The result
+    /// `values` is the uploaded volume (in bake::kValuesLayout). The result
     /// is left SHADER_READ_ONLY_OPTIMAL for fragment and compute shaders.
     gpu::Image bake(const gpu::Image& values, glm::dvec3 spacing) const;
 

@@ -104,30 +104,47 @@ std::vector<uint16_t> normalizeVolume(const Volume& volume, ValueWindow window) 
     return out;
 }
 
+namespace {
+
+// A 3D image of `format` whose texels `write` makes, sampled (and `extra`
+// usage), left in kValuesLayout for fragment and compute shaders.
+gpu::Image uploadValueImage(const gpu::Context& ctx, VkFormat format, glm::ivec3 dims,
+                            std::size_t texelBytes, const gpu::TexelWriter& write,
+                            VkImageUsageFlags extra) {
+    const VkExtent3D extent{static_cast<uint32_t>(dims.x), static_cast<uint32_t>(dims.y),
+                            static_cast<uint32_t>(dims.z)};
+    gpu::Image image =
+        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | extra);
+    gpu::uploadImage(ctx, image, texelBytes, write, kValuesLayout,
+                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    return image;
+}
+
+} // namespace
+
 gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window) {
     const ValueTexels texels(volume, window);
-    VkExtent3D extent{static_cast<uint32_t>(volume.dims.x), static_cast<uint32_t>(volume.dims.y),
-                      static_cast<uint32_t>(volume.dims.z)};
-    return gpu::createSampledVolume(
-        ctx, texels.format(), extent, texels.texelBytes(),
+    return uploadValueImage(
+        ctx, texels.format(), volume.dims, texels.texelBytes(),
         [&](std::size_t first, std::size_t count, std::byte* dst) {
             texels.write(first, count, dst);
         },
-        VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        ctx.formats().storageValues ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
 }
 
 gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims) {
     if (mask.size() != std::size_t(dims.x) * dims.y * dims.z)
         throw RuntimeError("uploadMask: the mask does not match its dimensions");
-    VkExtent3D extent{static_cast<uint32_t>(dims.x), static_cast<uint32_t>(dims.y),
-                      static_cast<uint32_t>(dims.z)};
-    return gpu::createSampledVolume(
-        ctx, VK_FORMAT_R8_UNORM, extent, 1,
-        [&](std::size_t first, std::size_t count, std::byte* dst) {
-            for (std::size_t j = 0; j < count; ++j)
-                dst[j] = mask[first + j] ? std::byte{255} : std::byte{0};
-        },
-        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    return uploadMask(ctx, dims, [&](std::size_t first, std::size_t count, std::byte* dst) {
+        for (std::size_t j = 0; j < count; ++j)
+            dst[j] = mask[first + j] ? std::byte{255} : std::byte{0};
+    });
+}
+
+gpu::Image uploadMask(const gpu::Context& ctx, glm::ivec3 dims, const gpu::TexelWriter& write) {
+    return uploadValueImage(ctx, VK_FORMAT_R8_UNORM, dims, 1, write, 0);
 }
 
 } // namespace cutaway::bake

@@ -44,12 +44,23 @@ private:
 /// R16 texels (x fastest), the CPU reference in tests and the VTK comparison's input.
 std::vector<uint16_t> normalizeVolume(const Volume& volume, ValueWindow window);
 
-/// A sampled 3D image in SHADER_READ_ONLY_OPTIMAL, readable by fragment and compute shaders.
+/// The layout value textures rest in: GENERAL, in which they can be both
+/// sampled and, where the device can (DeviceFormats::storageValues), read as
+/// storage images (sample_common.h's cwStorageFetch). Every descriptor of a
+/// value texture names it.
+inline constexpr VkImageLayout kValuesLayout = VK_IMAGE_LAYOUT_GENERAL;
+
+/// A 3D image of the values (ValueTexels), sampled and, where the device can,
+/// a storage image too; left in kValuesLayout, readable by fragment and
+/// compute shaders.
 gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window);
 
 /// A 0/1 mask (one byte per voxel, x fastest) as an R8_UNORM 3D image that
 /// samples 0 or 1, like uploadVolume over the window [0, 1] at an eighth of
-/// the work: no conversion, half the bytes.
+/// the work: no conversion, half the bytes. Sampled only, in kValuesLayout.
 gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims);
+/// The same from texels that `write` makes (0 outside, 255 inside), so the
+/// mask need not be whole on the host.
+gpu::Image uploadMask(const gpu::Context& ctx, glm::ivec3 dims, const gpu::TexelWriter& write);
 
 } // namespace cutaway::bake

@@ -35,6 +35,9 @@ struct ContextOptions {
 struct DeviceFormats {
     VkFormat color = VK_FORMAT_UNDEFINED;        ///< accumulation target: RGBA32F, else RGBA16F
     VkFormat depthStencil = VK_FORMAT_UNDEFINED; ///< D32S8, else D24S8
+    /// R8_UNORM and R16_UNORM can be storage images: the volume's values can
+    /// be read with imageLoad as well as sampled (bake/volume_upload.hpp).
+    bool storageValues = false;
 };
 
 class Context {

@@ -93,6 +93,10 @@ std::string check(VkPhysicalDevice device, DeviceChoice& choice) {
     if (!hasFeatures(device, VK_FORMAT_R16G16B16A16_SFLOAT, opt, sampledLinear))
         return "cannot filter RGBA16F transfer-function textures";
 
+    choice.formats.storageValues =
+        hasFeatures(device, VK_FORMAT_R8_UNORM, opt, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
+        hasFeatures(device, VK_FORMAT_R16_UNORM, opt, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT);
+
     const VkFormatFeatureFlags blendTarget = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT |
                                              VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT |
                                              VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;

@@ -86,16 +86,13 @@ gpu::Image FeatureFields::indicatorTexture(const OperatorSpec& spec,
     // Written into the upload's staging a few slices at a time: the indicator
     // is never whole on the host (it would add a byte per voxel to the bake's peak).
     SegmentIndicator segment(spec, *volume.scan, volume.labels.get());
-    gpu::Image texture = gpu::createSampledVolume(
-        m_ctx, VK_FORMAT_R8_UNORM,
-        {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)}, 1,
-        [&](std::size_t first, std::size_t count, std::byte* dst) {
+    gpu::Image texture = bake::uploadMask(
+        m_ctx, volume.dims, [&](std::size_t first, std::size_t count, std::byte* dst) {
             auto* out = reinterpret_cast<std::uint8_t*>(dst);
             segment.write(first, count, out);
             for (std::size_t j = 0; j < count; ++j)
                 out[j] = out[j] ? 255 : 0; // R8_UNORM 1 inside
-        },
-        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+        });
     segment.checkNotEmpty();
     return texture;
 }

@@ -45,7 +45,9 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                    {11, storage, 1, cs, nullptr},
                                    {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
                                    {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
-                                   {14, sampled, 1, cs, nullptr}});
+                                   {14, sampled, 1, cs, nullptr},
+                                   {15, storage, 1, cs, nullptr},
+                                   {16, storage, 1, cs, nullptr}});
     static_assert(CW_RAY_MAX_OPERATORS == 3, "one binding per slot's blocks: 9, 10, 11");
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
     std::vector<VkDescriptorSetLayout> sets(1 + CW_RAY_MAX_OPERATORS, operatorSetLayout);
@@ -63,11 +65,14 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
                                                          {sampled, 5},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 6},
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
-    gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, in.values, ro, m_linear);
+    gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, in.values, bake::kValuesLayout, m_linear);
+    for (uint32_t i = 0; i < 2; ++i)
+        gpu::writeImageDescriptor(m_ctx, set.set, 15 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                  in.valueImages[i], VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, in.gradients, ro, m_linear);
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, in.transfer, ro, m_linear);
     gpu::writeImageDescriptor(m_ctx, set.set, 4, sampled, in.classes, ro, m_nearest);

@@ -15,6 +15,7 @@
 #include "render/slice_pipeline.hpp"
 #include "shared/operator_frame.h"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <utility>
@@ -33,7 +34,11 @@ public:
     struct Inputs {
         VkBuffer uniforms;
         VkDeviceSize uniformBytes;
-        VkImageView values, gradients, transfer, classes;
+        VkImageView values; ///< in bake::kValuesLayout
+        /// The same as a storage image in the binding of its format (R8, R16),
+        /// a stand-in in the other (SliceRenderer::valueImages).
+        std::array<VkImageView, 2> valueImages;
+        VkImageView gradients, transfer, classes;
         /// The meshes' depth (a depth-only view, DEPTH_STENCIL_READ_ONLY_OPTIMAL),
         /// or any 2D float image of 1 (SHADER_READ_ONLY_OPTIMAL) without meshes.
         VkImageView meshDepth;

@@ -28,10 +28,14 @@ gpu::ShaderModuleHandle fragmentShader(const gpu::Context& ctx, SliceProxy proxy
 } // namespace
 
 SliceConstants::SliceConstants(const SliceVariant& v, std::initializer_list<uint32_t> more)
-    : m_values{v.preintegrated, v.byLabel, v.shading, static_cast<uint32_t>(v.lights),
-               static_cast<uint32_t>(v.alignment)} { // booleans are 32-bit VkBool32
-    assert(more.size() <= kMost - 5);
-    uint32_t count = 5;
+    : m_values{v.preintegrated,
+               v.byLabel,
+               v.shading,
+               static_cast<uint32_t>(v.lights),
+               static_cast<uint32_t>(v.alignment),
+               static_cast<uint32_t>(v.storageFetch)} { // booleans are 32-bit VkBool32
+    assert(more.size() <= kMost - kFixed);
+    uint32_t count = kFixed;
     for (uint32_t value : more)
         m_values[count++] = value;
     for (uint32_t i = 0; i < count; ++i)

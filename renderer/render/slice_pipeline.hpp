@@ -39,12 +39,16 @@ struct SliceVariant {
     bool shading = true;
     int lights = 0;    ///< directional lights, 0..CW_MAX_LIGHTS
     int alignment = 0; ///< operator proxies: CW_ALIGN_*
+    /// The volume's values read with imageLoad and filtered in the shader
+    /// instead of sampled (sample_common.h's volumeAt; SliceRenderer
+    /// decides): 0 sampled, 1 from the R8 binding, 2 from the R16 one.
+    int storageFetch = 0;
     auto operator<=>(const SliceVariant&) const = default;
 };
 
-/// The specialization constants of `variant` (constant_id 0..4 of
+/// The specialization constants of `variant` (constant_id 0..5 of
 /// shaders/glsl/sample_common.h), for the slicing and ray-casting pipelines,
-/// and up to three `more` (constant_id 5, 6, 7: the ray caster's operators).
+/// and up to three `more` (constant_id 6, 7, 8: the ray caster's operators).
 class SliceConstants {
 public:
     explicit SliceConstants(const SliceVariant& variant, std::initializer_list<uint32_t> more = {});
@@ -53,7 +57,8 @@ public:
     const VkSpecializationInfo* info() const { return &m_info; }
 
 private:
-    static constexpr uint32_t kMost = 8;
+    static constexpr uint32_t kFixed = 6; ///< constant_id 0..5, from the variant
+    static constexpr uint32_t kMost = kFixed + 3;
     uint32_t m_values[kMost];
     VkSpecializationMapEntry m_entries[kMost];
     VkSpecializationInfo m_info;

@@ -78,6 +78,13 @@ Image readImage(const gpu::Context& ctx, const gpu::Buffer& readback, int width,
 
 } // namespace
 
+std::array<VkImageView, 2> SliceRenderer::valueImages(const GpuVolume& volume) const {
+    std::array<VkImageView, 2> views{m_valueStandIns[0].view.get(), m_valueStandIns[1].view.get()};
+    if (m_ctx.formats().storageValues)
+        views[volume.values.format == VK_FORMAT_R8_UNORM ? 0 : 1] = volume.values.view.get();
+    return views;
+}
+
 SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
     m_sampler = gpu::createLinearSampler(ctx);
     m_nearest = gpu::createNearestSampler(ctx);
@@ -87,7 +94,18 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
-              {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr}});
+              {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
+              {15, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr},
+              {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr}});
+    setStorageFetch(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    const bool storage = ctx.formats().storageValues;
+    const VkFormat standIn[2] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
+                                 storage ? VK_FORMAT_R16_UNORM : VK_FORMAT_R8G8B8A8_UNORM};
+    const uint32_t zero = 0;
+    for (int i = 0; i < 2; ++i)
+        m_valueStandIns[i] = gpu::createStorageVolume(
+            ctx, standIn[i], {1, 1, 1}, &zero, storage ? std::size_t(i + 1) : sizeof zero,
+            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     // An operator's set: read by its slicing shader and by the ray caster.
     const auto fragOrCompute = frag | VK_SHADER_STAGE_COMPUTE_BIT;
     m_operatorSetLayout = gpu::createSetLayout(
@@ -403,15 +421,21 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     }
     const gpu::Image& transfer = m_transfer;
 
-    gpu::DescriptorSet set = gpu::allocateDescriptorSet(
-        m_ctx, m_setLayout.get(),
-        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4}});
+    gpu::DescriptorSet set =
+        gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
+                                   {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4},
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                m_uniforms.buffer.get(), sizeof(uniforms));
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, volume.values.view.get(), ro,
-                              m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, volume.values.view.get(),
+                              bake::kValuesLayout, m_sampler.get());
+    const std::array<VkImageView, 2> valueViews = valueImages(volume);
+    for (uint32_t i = 0; i < 2; ++i)
+        gpu::writeImageDescriptor(m_ctx, set.set, 15 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                  valueViews[i], VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, volume.gradients.view.get(), ro,
                               m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, transfer.view.get(), ro, m_sampler.get());
@@ -436,6 +460,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.shading = scene.render.shading.enabled;
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
+    if (m_storageFetch) variant.storageFetch = volume.values.format == VK_FORMAT_R8_UNORM ? 1 : 2;
     if (raycast) {
         Image image = renderRaycast(cam, volume, transfer, variant, margin, reachMm, set.set);
         compositeUnder(image, scene.render.background);

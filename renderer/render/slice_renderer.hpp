@@ -23,6 +23,7 @@
 #include "render/slicer.hpp"
 #include "scene/scene.hpp"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <utility>
@@ -52,6 +53,11 @@ public:
     /// regions, rays step over the empty blocks. Off, they run over the whole
     /// deformed box, as the tests that compare the two need.
     void setOperatorSkipping(bool on) { m_operatorSkipping = on; }
+    /// Whether the shaders load the volume's eight texels and filter them
+    /// (sample_common.h's volumeAt) instead of sampling the value texture:
+    /// on by default on a CPU device (lavapipe), where that is the faster
+    /// way, off on GPUs; only where the device can (DeviceFormats::storageValues).
+    void setStorageFetch(bool on) { m_storageFetch = on && m_ctx.formats().storageValues; }
     /// Feature-field bakes since the last call, one line each (see FeatureFields).
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
 
@@ -86,6 +92,9 @@ private:
     VkImageView blocksFor(std::size_t index, const GpuOperator& op, double reachMm);
     /// `reachMm`: the frame's longest slab, for the operators' blocks;
     /// `frameSet`: the slicing pass's set 0, for the meshes drawn first.
+    /// Bindings 15 and 16: the values as a storage image in the one of
+    /// their format (R8, R16), a stand-in in the other.
+    std::array<VkImageView, 2> valueImages(const GpuVolume& volume) const;
     Image renderRaycast(const CameraMatrices& cam, const GpuVolume& volume,
                         const gpu::Image& transfer, const SliceVariant& variant, int marginVoxels,
                         double reachMm, VkDescriptorSet frameSet);
@@ -128,6 +137,11 @@ private:
     uint64_t m_occupancySerial = 0; ///< counts remakes of m_occupancy
     std::vector<Regions> m_regions; ///< per operator
     bool m_operatorSkipping = true;
+    bool m_storageFetch = false;
+    /// 1^3 stand-ins for the value storage images (bindings 15, R8, and 16,
+    /// R16): the binding of the other format, or both where the values are
+    /// no storage images (DeviceFormats::storageValues; then RGBA8, never read).
+    gpu::Image m_valueStandIns[2];
     gpu::Image m_noSkipping; ///< the ray caster's blocks when skipping is off: one, active
     /// What each proxy of the frame is: operator `op`'s stencil box or one of
     /// its regions, or (op < 0) a box of the volume's occupied bricks.

@@ -76,6 +76,7 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
     const Raycaster::Inputs inputs{m_uniforms.buffer.get(),
                                    sizeof(shader::FrameUniforms),
                                    volume.values.view.get(),
+                                   valueImages(volume),
                                    volume.gradients.view.get(),
                                    transfer.view.get(),
                                    m_classes.view.get(),

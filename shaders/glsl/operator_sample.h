@@ -109,10 +109,10 @@ Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int mode
     bool masked = r.which == CW_CASE_MASKED;
     r.tc = masked ? tcPrime : tc0;
     if (mode == CW_ALIGN_SEGMENT) {
-        float kept = textureLod(volumeTex, tcPrime, 0.0).r;
+        float kept = volumeAt(tcPrime);
         r.value = masked ? kept : moving0;
     } else {
-        r.value = textureLod(volumeTex, r.tc, 0.0).r;
+        r.value = volumeAt(r.tc);
     }
     r.feature = masked ? fPrime : f0;
     r.cutW = p0.w;

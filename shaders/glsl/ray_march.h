@@ -150,7 +150,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
     vec3 tcStep = m.tcStep;
     vec3 cellStep = tcStep * ray.cellsPerTexture.xyz;
     vec3 invCellStep = reciprocalStep(cellStep);
-    float front = textureLod(volumeTex, tc, 0.0).r;
+    float front = volumeAt(tc);
     bool haveFront = true; // false after stepping over empty cells
     while (k <= k1) {
         // Transparent slabs cost a volume fetch and a visibility test
@@ -166,7 +166,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
                 haveFront = false;
                 continue;
             }
-            float value = textureLod(volumeTex, haveFront ? tc + tcStep : tc, 0.0).r;
+            float value = volumeAt(haveFront ? tc + tcStep : tc);
             if (!haveFront) {
                 front = value;
                 haveFront = true;
@@ -267,9 +267,9 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
     }
 }
 
-layout(constant_id = 5) const int cwOperatorCount = 1; // 1..CW_RAY_MAX_OPERATORS
-layout(constant_id = 6) const int cwAlignment1 = 0;    // slot 1's CW_ALIGN_*; slot 0's is
-layout(constant_id = 7) const int cwAlignment2 = 0;    // cwAlignment
+layout(constant_id = 6) const int cwOperatorCount = 1; // 1..CW_RAY_MAX_OPERATORS
+layout(constant_id = 7) const int cwAlignment1 = 0;    // slot 1's CW_ALIGN_*; slot 0's is
+layout(constant_id = 8) const int cwAlignment2 = 0;    // cwAlignment
 // The slots' uniforms, all in one buffer of set 0: lavapipe (Mesa 22.3)
 // crashed reading a fourth uniform buffer in a compute shader.
 layout(std140, set = 0, binding = 8) uniform RayOperators {

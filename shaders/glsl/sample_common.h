@@ -13,6 +13,12 @@ layout(constant_id = 1) const bool cwByLabel = false;
 layout(constant_id = 2) const bool cwShading = true;
 layout(constant_id = 3) const int cwLightCount = 0;
 layout(constant_id = 4) const int cwAlignment = 0; // operator proxies: CW_ALIGN_*
+// The volume's values read as a storage image and filtered here (volumeAt)
+// instead of sampled: on lavapipe a sampled fetch of an 8- or 16-bit texture
+// is a call that gathers its 64 texels one by one, imageLoad an inline load
+// (docs/performance.md, "Where a frame goes in lavapipe's code"). 0: sampled;
+// 1: the R8 storage image volumeImage8; 2: the R16 one, volumeImage16.
+layout(constant_id = 5) const int cwStorageFetch = 0;
 #define CW_SHADING_ON(u) cwShading
 #define CW_LIGHT_COUNT(u) cwLightCount
 
@@ -29,6 +35,10 @@ layout(set = 0, binding = 2) uniform sampler3D gradientTex;
 // label; a 1^3 texture of 0 without labels, and u.flags.w = 0).
 layout(set = 0, binding = 3) uniform sampler2DArray transferTex;
 layout(set = 0, binding = 4) uniform usampler3D classTex;
+// The value texture again, as a storage image of its format (see
+// cwStorageFetch); a 1^3 stand-in in the binding of the other format.
+layout(set = 0, binding = 15, r8) uniform readonly image3D volumeImage8;
+layout(set = 0, binding = 16, r16) uniform readonly image3D volumeImage16;
 
 // The operator-id codes of the proxy a pixel's first visible sample came
 // from: 0 nothing visible, 2 the untouched volume, 3 + i operator i. A
@@ -38,6 +48,32 @@ layout(set = 0, binding = 4) uniform usampler3D classTex;
 
 vec3 toTexture(vec3 world) {
     return (u.worldToTexture * vec4(world, 1.0)).xyz;
+}
+
+// The value texel at voxel p of the storage image cwStorageFetch names (the
+// constant folds the choice away).
+float valueTexel(ivec3 p) {
+    return cwStorageFetch == 1 ? imageLoad(volumeImage8, p).r : imageLoad(volumeImage16, p).r;
+}
+
+// The volume's normalized value at texture coordinate tc: trilinear, clamped
+// to the edge, as textureLod(volumeTex, tc, 0.0).r samples it. With
+// cwStorageFetch the eight texels are loaded and weighted here, in full float
+// precision (lavapipe filters 8-bit textures with 8-bit weights).
+float volumeAt(vec3 tc) {
+    if (cwStorageFetch == 0) return textureLod(volumeTex, tc, 0.0).r;
+    ivec3 dims = cwStorageFetch == 1 ? imageSize(volumeImage8) : imageSize(volumeImage16);
+    vec3 pos = clamp(tc * vec3(dims) - 0.5, vec3(0.0), vec3(dims - 1));
+    ivec3 lo = ivec3(pos); // pos >= 0: truncation is floor
+    ivec3 hi = min(lo + 1, dims - 1);
+    vec3 f = pos - vec3(lo);
+    vec4 near = vec4(valueTexel(lo), valueTexel(ivec3(hi.x, lo.yz)),
+                     valueTexel(ivec3(lo.x, hi.y, lo.z)), valueTexel(ivec3(hi.xy, lo.z)));
+    vec4 far = vec4(valueTexel(ivec3(lo.xy, hi.z)), valueTexel(ivec3(hi.x, lo.y, hi.z)),
+                    valueTexel(ivec3(lo.x, hi.yz)), valueTexel(hi));
+    vec4 z = mix(near, far, f.z);
+    vec2 y = mix(z.xy, z.zw, f.y);
+    return mix(y.x, y.y, f.x);
 }
 
 vec3 toEyeFrom(vec3 world) {

@@ -9,11 +9,11 @@ void main() {
     vec3 toEye = toEyeFrom(worldPos);
     float obliquity = obliquityOf(toEye);
     float stepMm = u.viewDir.w * obliquity;
-    float front = textureLod(volumeTex, tc, 0.0).r;
+    float front = volumeAt(tc);
     float back = front;
     vec3 shadeAt = tc; // the slab's middle when pre-integrated
     if (cwPreintegrated) {
-        back = textureLod(volumeTex, toTexture(worldPos - toEye * stepMm), 0.0).r;
+        back = volumeAt(toTexture(worldPos - toEye * stepMm));
         shadeAt = toTexture(worldPos - toEye * (0.5 * stepMm));
     }
     emit(backgroundSlab(front, back, tc, shadeAt, toEye, obliquity), CW_ID_BACKGROUND);
