@@ -15,12 +15,14 @@ packages=(
   libtinygltf-dev
 )
 # The benchmark's comparison with VTK's CPU ray caster (bench/vtk_bench.py)
-# needs VTK's Python module and an X server for its render window.
+# needs VTK's Python module and an X server for its render window; its
+# profile of lavapipe's generated code (bench/jit_profile.py) perf, gdb and
+# objdump.
 # The fuzz targets (fuzz/) need clang and its libFuzzer runtime
 # (libclang_rt.fuzzer-x86_64.a, in libclang-rt-14-dev on Debian 12).
 for option in "$@"; do
   case "$option" in
-    --bench) packages+=(python3-vtk9 xvfb xauth) ;;
+    --bench) packages+=(python3-vtk9 xvfb xauth linux-perf gdb binutils) ;;
     --fuzz) packages+=(clang libclang-rt-dev) ;;
     *) echo "usage: $0 [--bench] [--fuzz]" >&2; exit 2 ;;
   esac

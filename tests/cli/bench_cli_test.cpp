@@ -165,6 +165,30 @@ TEST_F(BenchCli, AbCompareGivesEachRowItsRatioOverThePairs) {
     EXPECT_NE(bad.output.find("absent: not an executable file"), std::string::npos) << bad.output;
 }
 
+TEST_F(BenchCli, JitProfileFindsTheFrameInTheGeneratedCode) {
+    for (const char* tool : {"perf", "gdb", "objdump"})
+        if (runProgram("sh", std::string("-c 'command -v ") + tool + "'").code != 0)
+            GTEST_SKIP() << tool << " is not installed (make bench installs it)";
+    const auto table = writeTable();
+    const std::string script = std::string(CUTAWAY_SOURCE_DIR) + "/bench/jit_profile.py";
+    const CommandResult r = runProgram(
+        "python3", script + " --bench " + CUTAWAY_BENCH + " --table " + table.string() +
+                       " --dataset tiny --alignment none --size 512 --settle 1 --seconds 2");
+    ASSERT_EQ(r.code, 0) << r.output;
+    // "N samples, P % in generated code": a ray-cast frame is lavapipe's
+    // generated code all but a few per cent, and the report names the
+    // shader's own function.
+    const auto at = r.output.find(" % in generated code");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const double share = std::stod(r.output.substr(r.output.rfind(' ', at - 1) + 1));
+    EXPECT_GT(share, 50.0) << r.output;
+    EXPECT_NE(r.output.find("the shader's own code"), std::string::npos) << r.output;
+    const CommandResult bad =
+        runProgram("python3", script + " --bench " + (m_dir / "absent").string());
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("absent: not an executable file"), std::string::npos) << bad.output;
+}
+
 TEST_F(BenchCli, AMissingTableIsBadInputNamingIt) {
     const CommandResult r =
         runProgram(CUTAWAY_BENCH, "--table " + (m_dir / "absent.json").string());
