@@ -113,16 +113,17 @@ VisibleValues::VisibleValues(const std::vector<const TransferFunction*>& transfe
         }
         visible = std::move(coarse);
     }
-    m_upTo.assign(visible.size() + 1, 0);
-    for (std::size_t i = 0; i < visible.size(); ++i)
-        m_upTo[i + 1] = m_upTo[i] + (visible[i] ? 1 : 0);
+    const int bins = static_cast<int>(visible.size());
+    m_firstFrom.assign(visible.size() + 1, bins);
+    for (int i = bins - 1; i >= 0; --i)
+        m_firstFrom[std::size_t(i)] = visible[std::size_t(i)] ? i : m_firstFrom[std::size_t(i) + 1];
 }
 
 bool VisibleValues::anyIn(float lo, float hi) const {
-    const float last = static_cast<float>(m_upTo.size() - 2);
+    const float last = static_cast<float>(m_firstFrom.size() - 2);
     const int first = std::clamp(static_cast<int>(std::floor(lo * last)), 0, int(last));
     const int end = std::clamp(static_cast<int>(std::ceil(hi * last)), 0, int(last)) + 1;
-    return m_upTo[std::size_t(end)] > m_upTo[std::size_t(first)];
+    return m_firstFrom[std::size_t(first)] < end;
 }
 
 BrickOccupancy brickOccupancy(const SpanGrid& bricks, const Box& box, glm::dvec3 spacing,

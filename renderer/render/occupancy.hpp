@@ -36,12 +36,13 @@ public:
     /// have opacity: some bin from floor(lo * (n - 1)) to ceil(hi * (n - 1))
     /// (the table's linear filtering) is visible for some function.
     bool anyIn(float lo, float hi) const;
-    /// The visible bins before each bin: entry i counts bins [0, i), so
-    /// anyIn is upTo[end] > upTo[first] (what the ray caster reads).
-    const std::vector<int>& upTo() const { return m_upTo; }
+    /// Per bin i, the first visible bin from i on (the bin count when none;
+    /// one entry more, for i = the bin count), so anyIn is
+    /// firstFrom[first] < end: what the ray caster reads, one read per slab.
+    const std::vector<int>& firstFrom() const { return m_firstFrom; }
 
 private:
-    std::vector<int> m_upTo; ///< visible bins in [0, i)
+    std::vector<int> m_firstFrom;
 };
 
 /// The smallest and largest of some normalized values (lo > hi: none).

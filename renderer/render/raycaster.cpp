@@ -133,12 +133,12 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
                              const VisibleValues& visible, uint64_t occupancySerial, int margin) {
     const std::pair<uint64_t, int> key(occupancySerial, margin);
     if (m_cells.distance.image && m_cells.key == key) return;
-    const std::vector<int>& upTo = visible.upTo();
-    const VkDeviceSize visibleBytes = upTo.size() * sizeof(int);
+    const std::vector<int>& firstFrom = visible.firstFrom();
+    const VkDeviceSize visibleBytes = firstFrom.size() * sizeof(int);
     if (m_visible.size != visibleBytes)
         m_visible =
             gpu::createBuffer(m_ctx, visibleBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    std::memcpy(m_visible.mapped, upTo.data(), visibleBytes);
+    std::memcpy(m_visible.mapped, firstFrom.data(), visibleBytes);
     m_cells.distance = {}; // freed before its successor is made
     // Without the scan on the host: one occupied cell, the whole box.
     RayCells cells{glm::ivec3(1), {1}, {0}, glm::ivec3(0), glm::ivec3(1)};
