@@ -225,20 +225,31 @@ Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent
     return image;
 }
 
+namespace {
+
+// A 3D image of `usage` (and TRANSFER_DST) holding `bytes` of tightly packed
+// texels, left in `layout` for `readers`.
+Image createFilledVolume(const Context& ctx, VkFormat format, VkExtent3D extent,
+                         VkImageUsageFlags usage, VkImageLayout layout, const void* data,
+                         std::size_t bytes, VkPipelineStageFlags2 readers) {
+    Image image =
+        createImage(ctx, VK_IMAGE_TYPE_3D, format, extent, usage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    uploadImage(ctx, image, data, bytes, layout, readers);
+    return image;
+}
+
+} // namespace
+
 Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent, const void* data,
                           std::size_t bytes, VkPipelineStageFlags2 readers) {
-    Image image = createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    uploadImage(ctx, image, data, bytes, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, readers);
-    return image;
+    return createFilledVolume(ctx, format, extent, VK_IMAGE_USAGE_SAMPLED_BIT,
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, data, bytes, readers);
 }
 
 Image createStorageVolume(const Context& ctx, VkFormat format, VkExtent3D extent, const void* data,
                           std::size_t bytes, VkPipelineStageFlags2 readers) {
-    Image image = createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
-                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    uploadImage(ctx, image, data, bytes, VK_IMAGE_LAYOUT_GENERAL, readers);
-    return image;
+    return createFilledVolume(ctx, format, extent, VK_IMAGE_USAGE_STORAGE_BIT,
+                              VK_IMAGE_LAYOUT_GENERAL, data, bytes, readers);
 }
 
 std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkImageLayout layout,

@@ -32,7 +32,8 @@ std::pair<Image, Image> bothWays(render::SliceRenderer& renderer, const Scene& s
 }
 
 TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
-    ASSERT_TRUE(ctx().formats().storageValues) << "lavapipe can store R8 and R16";
+    if (!ctx().formats().storageValues)
+        GTEST_SKIP() << ctx().deviceName() << " cannot store R8 and R16 images (lavapipe can)";
     // The head phantom's 8-bit values over [0, 255] upload as R8; over a
     // narrower window, as R16.
     const std::pair<const char*, VkFormat> windows[] = {{"[0, 255]", VK_FORMAT_R8_UNORM},
