@@ -132,6 +132,25 @@ std::vector<DatasetEntry> readTable(const std::filesystem::path& file) {
     return entries;
 }
 
+namespace {
+
+// The samples of one ray-cast frame of `scene`, by kind, summed over its
+// pixels (SliceRenderer::setCensus).
+nlohmann::json censusOf(job::FrameRenderer& renderer, const Scene& scene) {
+    renderer.setCensus(true);
+    const Image counts = renderer.render(scene);
+    renderer.setCensus(false);
+    double sums[4] = {0.0, 0.0, 0.0, 0.0};
+    for (std::size_t i = 0; i < counts.rgba.size(); ++i)
+        sums[i % 4] += counts.rgba[i];
+    return {{"volume_fetched", sums[0]},
+            {"volume_shaded", sums[1]},
+            {"operator_resolved", sums[2]},
+            {"operator_shaded", sums[3]}};
+}
+
+} // namespace
+
 nlohmann::json renderPeak(const gpu::Context& ctx, const DatasetEntry& entry,
                           const std::string& alignment, const std::string& method, double spacing,
                           const BenchOptions& o) {
@@ -204,6 +223,11 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
                 r["ms_max"] = s.max;
                 r["fps"] = 1000.0 / s.median;
                 r["first_frame_ms"] = firstMs;
+                if (o.census && method == "raycast") {
+                    scene.camera.azimuthDeg = azimuth;
+                    r["census"] = censusOf(renderer, scene);
+                    std::fprintf(stderr, "    census per frame: %s\n", r["census"].dump().c_str());
+                }
                 records.push_back(r);
                 std::fprintf(stderr,
                              "  %-12s %-8s %-8s d=%.1f  %8.1f ms median  (first %7.1f ms)\n",

@@ -24,6 +24,9 @@ struct BenchOptions {
     int bakeRepeats = 3;             ///< runs of each bake timing; 0: none (frames only)
     std::filesystem::path vtkDir;    ///< where to write the VTK comparison's spec; empty = none
     std::vector<SceneSetting> extra; ///< --set overrides applied to every row (experiments)
+    /// Ray-cast rows also count their first frame's samples by kind
+    /// (SliceRenderer::setCensus): the record's "census", samples per frame.
+    bool census = false;
 };
 
 /// A row of bench/table1.json: a scene with one operator, and the alignment

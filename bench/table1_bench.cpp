@@ -146,6 +146,8 @@ int main(int argc, char** argv) {
                    "Runs of each bake timing (0: no bake timings, frames only)")
         ->check(CLI::Range(0, 100));
     std::vector<std::string> sets;
+    app.add_flag("--census", o.census,
+                 "Count the samples of each ray-cast row's first view by kind (record's census)");
     app.add_option("--set", sets, "Override a scene value in every row: /json/pointer=VALUE");
     CLI11_PARSE(app, argc, argv);
     for (const std::string& s : sets) {

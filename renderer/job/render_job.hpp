@@ -101,6 +101,8 @@ class FrameRenderer {
 public:
     explicit FrameRenderer(const gpu::Context& ctx);
     Image render(const Scene& scene);
+    /// See SliceRenderer::setCensus.
+    void setCensus(bool on) { m_renderer.setCensus(on); }
     int uploads() const { return m_uploads; } ///< volumes loaded, uploaded and baked so far
     /// What the renders since the last call derived, one line each (e.g. the
     /// Otsu threshold of surface alignment and its bake time).

@@ -34,13 +34,16 @@ SliceConstants::SliceConstants(const SliceVariant& v, std::initializer_list<uint
                static_cast<uint32_t>(v.lights),
                static_cast<uint32_t>(v.alignment),
                static_cast<uint32_t>(v.storageFetch)} { // booleans are 32-bit VkBool32
-    assert(more.size() <= kMost - kFixed);
-    uint32_t count = kFixed;
+    assert(more.size() <= kMost - kFixed - 1);
+    uint32_t at = kFixed;
     for (uint32_t value : more)
-        m_values[count++] = value;
-    for (uint32_t i = 0; i < count; ++i)
+        m_values[at++] = value;
+    while (at < kMost - 1)
+        m_values[at++] = 0;
+    m_values[kMost - 1] = v.census;
+    for (uint32_t i = 0; i < kMost; ++i)
         m_entries[i] = {i, i * 4u, 4u};
-    m_info = {count, m_entries, count * 4u, m_values};
+    m_info = {kMost, m_entries, kMost * 4u, m_values};
 }
 
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,

@@ -43,12 +43,17 @@ struct SliceVariant {
     /// instead of sampled (sample_common.h's volumeAt; SliceRenderer
     /// decides): 0 sampled, 1 from the R8 binding, 2 from the R16 one.
     int storageFetch = 0;
+    /// The ray caster's census (SliceRenderer::setCensus): counts of samples
+    /// per pixel instead of colour.
+    bool census = false;
     auto operator<=>(const SliceVariant&) const = default;
 };
 
 /// The specialization constants of `variant` (constant_id 0..5 of
 /// shaders/glsl/sample_common.h), for the slicing and ray-casting pipelines,
-/// and up to three `more` (constant_id 6, 7, 8: the ray caster's operators).
+/// up to three `more` (constant_id 6, 7, 8: the ray caster's operators; 0
+/// where not given) and the census (constant_id 9, ray_march.h). A shader
+/// that does not declare an id ignores its entry.
 class SliceConstants {
 public:
     explicit SliceConstants(const SliceVariant& variant, std::initializer_list<uint32_t> more = {});
@@ -58,7 +63,7 @@ public:
 
 private:
     static constexpr uint32_t kFixed = 6; ///< constant_id 0..5, from the variant
-    static constexpr uint32_t kMost = kFixed + 3;
+    static constexpr uint32_t kMost = kFixed + 4;
     uint32_t m_values[kMost];
     VkSpecializationMapEntry m_entries[kMost];
     VkSpecializationInfo m_info;

@@ -462,8 +462,9 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     if (m_storageFetch) variant.storageFetch = volume.values.format == VK_FORMAT_R8_UNORM ? 1 : 2;
     if (raycast) {
+        variant.census = m_census;
         Image image = renderRaycast(cam, volume, transfer, variant, margin, reachMm, set.set);
-        compositeUnder(image, scene.render.background);
+        if (!m_census) compositeUnder(image, scene.render.background);
         return image;
     }
     const gpu::DescriptorSet saturationSet = m_saturation->bind(m_color);

@@ -58,6 +58,12 @@ public:
     /// on by default on a CPU device (lavapipe), where that is the faster
     /// way, off on GPUs; only where the device can (DeviceFormats::storageValues).
     void setStorageFetch(bool on) { m_storageFetch = on && m_ctx.formats().storageValues; }
+    /// The ray caster's census, for performance work (bench --census): on,
+    /// a ray-cast frame returns per pixel, instead of colour, how many
+    /// samples its ray took of each kind (shaders/glsl/ray_march.h's `census`: r the
+    /// untouched volume's values fetched, g its slabs shaded, b operator
+    /// points resolved, a operator slabs shaded). Sliced frames ignore it.
+    void setCensus(bool on) { m_census = on; }
     /// Feature-field bakes since the last call, one line each (see FeatureFields).
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
 
@@ -138,6 +144,7 @@ private:
     std::vector<Regions> m_regions; ///< per operator
     bool m_operatorSkipping = true;
     bool m_storageFetch = false;
+    bool m_census = false;
     /// 1^3 stand-ins for the value storage images (bindings 15, R8, and 16,
     /// R16): the binding of the other format, or both where the values are
     /// no storage images (DeviceFormats::storageValues; then RGBA8, never read).

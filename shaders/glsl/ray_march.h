@@ -29,6 +29,12 @@
 #include "shared/tile_order.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+// The census (SliceRenderer::setCensus, bench --census): the target receives,
+// instead of colour, how many samples the ray took of each kind: x the
+// untouched volume's values fetched, y its slabs shaded, z operator points
+// resolved (Eq. 3-4), w operator slabs shaded. Off, the counting folds away.
+layout(constant_id = 9) const bool cwCensus = false;
+vec4 census = vec4(0.0);
 layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
 // Which proxy the pixel's first visible sample came from (codes: see
 // CW_ID_BACKGROUND in sample_common.h), as slicing's operator-id attachment.
@@ -170,6 +176,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
                 continue;
             }
             float value = volumeAt(haveFront ? tc + tcStep : tc);
+            if (cwCensus) census.x += 1.0;
             if (!haveFront) {
                 front = value;
                 haveFront = true;
@@ -182,6 +189,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
             k += 1.0;
         }
         if (k > k1) break;
+        if (cwCensus) census.y += 1.0;
         vec4 c = classifySlab(front, cwPreintegrated ? next : front, m.obliquity, classLayer(tc));
         vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
         c = shade(c, textureLod(gradientTex, shadeAt, 0.0), m.toEye);
@@ -249,6 +257,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
                 continue;
             }
             next = resolve(op, map, feature, mode, pointAt(m, haveFront ? k + 1.0 : k));
+            if (cwCensus) census.z += 1.0;
             if (!haveFront) {
                 front = next;
                 haveFront = true;
@@ -261,6 +270,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
         }
         if (k > k1) break;
         bool moved;
+        if (cwCensus) census.w += 1.0;
         vec4 c = shadeOperatorSlab(op, map, feature, mode, s, pointAt(m, k), m.toEye, m.obliquity,
                                    stepMm, moved);
         composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
@@ -417,7 +427,7 @@ void main() {
         backgroundRun(m, samples.x, samples.y, sum, id);
 #endif
     }
-    imageStore(target, pixel, sum);
+    imageStore(target, pixel, cwCensus ? census : sum);
     imageStore(idTarget, pixel, vec4(id));
 }
 

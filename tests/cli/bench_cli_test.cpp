@@ -141,6 +141,35 @@ TEST_F(BenchCli, WithoutBakeRepeatsOnlyTheFramesAreTimed) {
     EXPECT_FALSE(records[0].contains("render_peak_rss_mib")) << "no single-render processes";
 }
 
+TEST_F(BenchCli, TheCensusCountsTheRayCastRowsSamples) {
+    const auto table = writeTable();
+    const auto results = m_dir / "census.json";
+    const CommandResult r = runProgram(
+        CUTAWAY_BENCH, "--table " + table.string() + " --json " + results.string() +
+                           " --alignments none,axis --methods raycast,slicing --spacings 1.0"
+                           " --frames 1 --size 32 --turntable 0 --bake-repeats 0 --census");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("vulkan validation"), std::string::npos) << r.output;
+    json records;
+    std::ifstream(results) >> records;
+    ASSERT_EQ(records.size(), 4u) << records.dump();
+    for (const json& rec : records) {
+        SCOPED_TRACE(rec.dump());
+        if (rec["method"] == "slicing") { // slicing has no rays to count
+            EXPECT_FALSE(rec.contains("census"));
+            continue;
+        }
+        const json& c = rec.at("census");
+        EXPECT_GE(c.at("volume_fetched").get<double>(), c.at("volume_shaded").get<double>());
+        EXPECT_GT(c.at("volume_shaded").get<double>(), 0.0);
+        const double resolved = c.at("operator_resolved").get<double>();
+        if (rec["alignment"] == "none")
+            EXPECT_EQ(resolved, 0.0);
+        else
+            EXPECT_GT(resolved, 0.0);
+    }
+}
+
 // bench/ab_compare.py, which judges a change by alternating two builds: the
 // same build twice gives a row per alignment, each with its pairs counted.
 TEST_F(BenchCli, AbCompareGivesEachRowItsRatioOverThePairs) {

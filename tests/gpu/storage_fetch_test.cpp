@@ -76,8 +76,9 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
                 EXPECT_LT(d.maxAbs, format == VK_FORMAT_R8_UNORM ? 0.03f : 1e-5f)
                     << "rms " << d.rms;
                 EXPECT_LT(d.rms, 2e-3);
-                if (format == VK_FORMAT_R8_UNORM)
+                if (format == VK_FORMAT_R8_UNORM) {
                     EXPECT_GT(d.maxAbs, 0.0f) << "the same to the bit: not loaded and filtered";
+                }
             }
 }
 
