@@ -10,7 +10,6 @@
 #include <stdexcept>
 
 namespace cutaway::render {
-namespace {
 
 struct RayPush { // matches the push constants of shaders/glsl/ray_march.h
     glm::mat4 clipToWorld;
@@ -18,9 +17,57 @@ struct RayPush { // matches the push constants of shaders/glsl/ray_march.h
     glm::vec4 boxHi;
     glm::vec4 cellsPerTexture; // w: the longest slab the cells cover, in voxels
     std::uint32_t rowStride;   // shared/tile_order.h
+    std::uint32_t tileOffset;  // the dispatch's first tile, x | y << 16
+    std::uint32_t operatorTilesLo, operatorTilesHi; // the operators' tiles, [lo, hi)
 };
+static_assert(sizeof(RayPush) <= 128, "Vulkan guarantees 128 bytes of push constants");
+
+namespace {
+
+std::uint32_t packTile(glm::uvec2 tile) {
+    return tile.x | (tile.y << 16);
+}
+
+// The world corners of the operators' deformed boxes.
+std::vector<glm::dvec3> boxCorners(const std::vector<Raycaster::Operator>& operators) {
+    std::vector<glm::dvec3> corners;
+    for (const Raycaster::Operator& op : operators) {
+        const glm::dmat4 toWorld(op.uniforms->localToWorld);
+        const glm::dvec3 lo(op.uniforms->mapLo), hi(op.uniforms->mapHi);
+        for (int c = 0; c < 8; ++c)
+            corners.push_back(
+                glm::dvec3(toWorld * glm::dvec4((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y,
+                                                (c & 4) ? hi.z : lo.z, 1.0)));
+    }
+    return corners;
+}
 
 } // namespace
+
+TileRect tilesCovering(const glm::dmat4& viewProj, const std::vector<glm::dvec3>& points,
+                       glm::uvec2 pixels) {
+    const glm::uvec2 tiles = (pixels + 7u) / 8u;
+    const TileRect all{glm::uvec2(0), tiles};
+    if (points.empty()) return {};
+    glm::dvec2 lo(1e300), hi(-1e300);
+    for (const glm::dvec3& p : points) {
+        const glm::dvec4 clip = viewProj * glm::dvec4(p, 1.0);
+        if (!(clip.w > 1e-9)) return all; // at or behind the eye: no bounds on the screen
+        const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+        lo = glm::min(lo, ndc);
+        hi = glm::max(hi, ndc);
+    }
+    // Pixel i's ray passes through ndc (i + 0.5) / size * 2 - 1 (ray_march.h).
+    const glm::dvec2 size(pixels);
+    const glm::dvec2 pixelLo = glm::floor((lo + 1.0) * 0.5 * size - 0.5) - 1.0;
+    const glm::dvec2 pixelHi = glm::ceil((hi + 1.0) * 0.5 * size - 0.5) + 1.0;
+    const glm::dvec2 tileLo =
+        glm::clamp(glm::floor(pixelLo / 8.0), glm::dvec2(0.0), glm::dvec2(tiles));
+    const glm::dvec2 tileHi =
+        glm::clamp(glm::floor(pixelHi / 8.0) + 1.0, glm::dvec2(0.0), glm::dvec2(tiles));
+    TileRect rect{glm::uvec2(tileLo), glm::uvec2(tileHi)};
+    return rect.empty() ? TileRect{} : rect;
+}
 
 Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler nearest,
                      VkDescriptorSetLayout operatorSetLayout)
@@ -160,7 +207,7 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
 
 void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& targets,
                        const CameraMatrices& camera, const SliceVariant& variant,
-                       const std::vector<Operator>& operators) {
+                       const std::vector<Operator>& operators, bool operatorTiles) {
     if (operators.size() > CW_RAY_MAX_OPERATORS)
         throw std::logic_error("the ray caster takes at most CW_RAY_MAX_OPERATORS operators");
     for (const gpu::Image* target : {&targets.color, &targets.id})
@@ -170,10 +217,39 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
     const VkExtent3D size = targets.color.extent;
     const glm::uvec2 groups((size.width + 7) / 8, (size.height + 7) / 8); // 8x8 invocations each
-    const RayPush push{glm::mat4(glm::inverse(camera.viewProj)),
-                       glm::vec4(glm::vec3(m_cells.bounds.lo), 0.0f),
-                       glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f), m_cells.perTexture,
-                       shader::tileRowStride(groups.y)};
+    // The operators' shader over the tiles their boxes may cover, the
+    // volume's over the others (see the shaders' main()).
+    const TileRect all{glm::uvec2(0), groups};
+    const TileRect opTiles = operators.empty() ? TileRect{}
+                             : operatorTiles ? tilesCovering(camera.viewProj, boxCorners(operators),
+                                                             glm::uvec2(size.width, size.height))
+                                             : all;
+    RayPush push{glm::mat4(glm::inverse(camera.viewProj)),
+                 glm::vec4(glm::vec3(m_cells.bounds.lo), 0.0f),
+                 glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f),
+                 m_cells.perTexture,
+                 shader::tileRowStride(groups.y),
+                 0u,
+                 packTile(opTiles.lo),
+                 packTile(opTiles.hi)};
+    if (opTiles.lo != all.lo || opTiles.hi != all.hi) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant, {}));
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &set, 0,
+                                nullptr);
+        vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        vkCmdDispatch(cmd, groups.x, groups.y, 1);
+    }
+    if (!opTiles.empty()) recordOperators(cmd, set, variant, operators, opTiles, push);
+    for (const gpu::Image* target : {&targets.color, &targets.id})
+        gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+void Raycaster::recordOperators(VkCommandBuffer cmd, VkDescriptorSet set,
+                                const SliceVariant& variant, const std::vector<Operator>& operators,
+                                const TileRect& tiles, RayPush push) {
     std::vector<int> alignments;
     // Set 0, then each operator's; unused slots repeat the first operator's
     // (the shader's constants leave them unread, but bound they must be).
@@ -183,20 +259,17 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
         alignments.push_back(operators[i].alignment);
         uniforms[i] = *operators[i].uniforms;
     }
-    if (!operators.empty())
-        for (std::size_t i = 0; i < CW_RAY_MAX_OPERATORS; ++i)
-            sets.push_back(operators[i < operators.size() ? i : 0].set);
-    const VkPipelineLayout layout = operators.empty() ? m_layout.get() : m_operatorLayout.get();
+    for (std::size_t i = 0; i < CW_RAY_MAX_OPERATORS; ++i)
+        sets.push_back(operators[i < operators.size() ? i : 0].set);
+    const VkPipelineLayout layout = m_operatorLayout.get();
+    const glm::uvec2 groups = tiles.hi - tiles.lo;
+    push.rowStride = shader::tileRowStride(groups.y);
+    push.tileOffset = packTile(tiles.lo);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant, alignments));
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,
                             static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, groups.x, groups.y, 1);
-    for (const gpu::Image* target : {&targets.color, &targets.id})
-        gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                        VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_TRANSFER_READ_BIT);
 }
 
 } // namespace cutaway::render

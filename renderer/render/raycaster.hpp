@@ -23,6 +23,21 @@
 
 namespace cutaway::render {
 
+struct RayPush; // the shaders' push constants (raycaster.cpp)
+
+/// Tiles [lo, hi) of the ray caster's 8x8-pixel tiles (empty: lo == hi).
+struct TileRect {
+    glm::uvec2 lo{0}, hi{0};
+    bool empty() const { return lo.x >= hi.x || lo.y >= hi.y; }
+};
+
+/// The tiles of an image of `pixels` (the ray caster's, 8x8 each) whose rays
+/// may meet the convex hull of `points` (world) through the camera's
+/// `viewProj`: the tiles of the points' projected bounds, a pixel wider. All
+/// of them when a point lies at or behind the eye.
+TileRect tilesCovering(const glm::dmat4& viewProj, const std::vector<glm::dvec3>& points,
+                       glm::uvec2 pixels);
+
 class Raycaster {
 public:
     /// `operatorSetLayout`: the layout of an operator's descriptor set
@@ -78,15 +93,22 @@ public:
     /// deformed boxes (at most CW_RAY_MAX_OPERATORS, not overlapping), whose
     /// uniforms it copies into a buffer of set 0 (binding 8): call before
     /// submitting, once per frame, and let the frame finish before the next
-    /// record() (SliceRenderer submits and waits).
+    /// record() (SliceRenderer submits and waits). With `operatorTiles`, the
+    /// shader with operators runs only over the tiles whose rays may meet
+    /// their boxes (tilesCovering), the one without over the others; else the
+    /// former over the whole image.
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& targets,
                 const CameraMatrices& camera, const SliceVariant& variant,
-                const std::vector<Operator>& operators);
+                const std::vector<Operator>& operators, bool operatorTiles = true);
 
 private:
     /// The pipeline for `variant` and the operators' alignments (none: the
     /// shader without operators).
     VkPipeline pipelineFor(const SliceVariant& variant, const std::vector<int>& alignments);
+    /// The operators' shader over `tiles`, with `push` for the whole image.
+    void recordOperators(VkCommandBuffer cmd, VkDescriptorSet set, const SliceVariant& variant,
+                         const std::vector<Operator>& operators, const TileRect& tiles,
+                         RayPush push);
 
     const gpu::Context& m_ctx;
     VkSampler m_linear, m_nearest;

@@ -50,8 +50,10 @@ public:
     const FrameStats& lastStats() const { return m_stats; }
     /// Whether operator shaders run only where something can show
     /// (render/operator_regions.hpp; on by default): slicing shades only the
-    /// regions, rays step over the empty blocks. Off, they run over the whole
-    /// deformed box, as the tests that compare the two need.
+    /// regions, rays step over the empty blocks, and the ray caster's shader
+    /// with operators runs only over the tiles of the image their boxes may
+    /// cover (Raycaster::record). Off, they run over the whole deformed box
+    /// and the whole image, as the tests that compare the two need.
     void setOperatorSkipping(bool on) { m_operatorSkipping = on; }
     /// Whether the shaders load the volume's eight texels and filter them
     /// (sample_common.h's volumeAt) instead of sampling the value texture:

@@ -119,7 +119,7 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
                                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                    m_meshReadback.buffer.get(), 1, &region);
         }
-        m_raycaster->record(cmd, set.set, targets, cam, rays, operators);
+        m_raycaster->record(cmd, set.set, targets, cam, rays, operators, m_operatorSkipping);
         vkCmdCopyImageToBuffer(cmd, m_rayTarget.image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                m_rayReadback.buffer.get(), 1, &region);
         if (withId)
