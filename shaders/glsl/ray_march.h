@@ -176,13 +176,18 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         // or done.
         float next = 0.0;
         while (k <= k1) {
-            float skip = stepsOverEmpty(tc, cellStep, invCellStep, m.slabsInMargin);
-            if (skip > 0.0) {
+            // Jumps over empty cells take passes of their own, repeated
+            // while some lane still jumps: lavapipe runs a loop's whole body
+            // for its 8 lanes on every pass, so a jump in the pass below
+            // would cost its lanes the fetch and the test of the others.
+            float skip;
+            do {
+                skip = k <= k1 ? stepsOverEmpty(tc, cellStep, invCellStep, m.slabsInMargin) : 0.0;
                 k += skip;
                 tc += skip * tcStep;
-                haveFront = false;
-                continue;
-            }
+                haveFront = haveFront && skip == 0.0;
+            } while (skip > 0.0);
+            if (k > k1) break;
             float value = volumeAt(haveFront ? tc + tcStep : tc);
             if (cwCensus) census.x += 1.0;
             if (!haveFront) {
@@ -258,12 +263,16 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
         // One resolve per pass for every lane (of the front after a jump, or
         // of the next back), so lanes in lock-step keep together.
         while (k <= k1) {
-            float skip = stepsOverEmptyBlocks(op, slot, m, k, blockStep, invBlockStep);
-            if (skip > 0.0) {
+            // Jumps over empty blocks in passes of their own (as in
+            // backgroundRun): a resolve costs several fetches.
+            float skip;
+            do {
+                skip =
+                    k <= k1 ? stepsOverEmptyBlocks(op, slot, m, k, blockStep, invBlockStep) : 0.0;
                 k += skip;
-                haveFront = false;
-                continue;
-            }
+                haveFront = haveFront && skip == 0.0;
+            } while (skip > 0.0);
+            if (k > k1) break;
             next = resolve(op, map, feature, mode, pointAt(m, haveFront ? k + 1.0 : k));
             if (cwCensus) census.z += 1.0;
             if (!haveFront) {
