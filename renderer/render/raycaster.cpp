@@ -31,14 +31,9 @@ std::uint32_t packTile(glm::uvec2 tile) {
 // The world corners of the operators' deformed boxes.
 std::vector<glm::dvec3> boxCorners(const std::vector<Raycaster::Operator>& operators) {
     std::vector<glm::dvec3> corners;
-    for (const Raycaster::Operator& op : operators) {
-        const glm::dmat4 toWorld(op.uniforms->localToWorld);
-        const glm::dvec3 lo(op.uniforms->mapLo), hi(op.uniforms->mapHi);
-        for (int c = 0; c < 8; ++c)
-            corners.push_back(
-                glm::dvec3(toWorld * glm::dvec4((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y,
-                                                (c & 4) ? hi.z : lo.z, 1.0)));
-    }
+    for (const Raycaster::Operator& op : operators)
+        for (const glm::dvec3& c : op.box.corners())
+            corners.push_back(c);
     return corners;
 }
 

@@ -9,6 +9,7 @@
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
+#include "operators/operator_geometry.hpp"
 #include "render/camera.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/occupancy.hpp"
@@ -74,6 +75,7 @@ public:
         VkImageView blocks;
         const shader::OperatorUniforms* uniforms;
         int alignment;
+        operators::WorldBox box; ///< its deformed box (the map's domain)
     };
     /// What a frame writes: premultiplied colour over nothing (RGBA32F) and
     /// the operator-id code of each pixel's first visible sample (R32F: 0

@@ -71,7 +71,7 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
         const GpuOperator& op = *ops[i];
         operators.push_back({op.set.set, blocksFor(i, op, reachMm),
                              static_cast<const shader::OperatorUniforms*>(op.uniforms.mapped),
-                             alignmentCode(op.spec.alignment.mode)});
+                             alignmentCode(op.spec.alignment.mode), op.box});
     }
     const Raycaster::Inputs inputs{m_uniforms.buffer.get(),
                                    sizeof(shader::FrameUniforms),

@@ -5,6 +5,7 @@
 // the function lives beside the ray caster. That the two shaders together
 // render what the operators' shader alone renders, to the bit, is
 // OperatorRegionsRender.SkippingChangesNoPixel.)
+#include "operators/operator_geometry.hpp"
 #include "render/camera.hpp"
 #include "render/raycaster.hpp"
 #include "scene/scene.hpp"
@@ -28,12 +29,10 @@ render::CameraMatrices cameraFor(bool perspective, double azimuth) {
     return render::computeCamera(camera, bounds, int(kSize.x), int(kSize.y));
 }
 
-// The corners of the box [lo, hi].
+// The corners of the world box [lo, hi].
 std::vector<glm::dvec3> corners(glm::dvec3 lo, glm::dvec3 hi) {
-    std::vector<glm::dvec3> out;
-    for (int c = 0; c < 8; ++c)
-        out.emplace_back((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
-    return out;
+    const auto c = operators::WorldBox{glm::dmat4(1.0), {lo, hi}}.corners();
+    return {c.begin(), c.end()};
 }
 
 // Whether the ray of pixel (x, y), as ray_march.h casts it from the near
