@@ -73,16 +73,16 @@ nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
     // margin; the margin of d = 1) and what a new transfer function costs
     // after it: the bricks' and cells' flags and the cells' distances.
     const int margin = render::slabMargin(1.0);
-    render::SpanGrid cellSpans, brickSpans;
+    render::SpanGrid cellSpans, bricks;
     bakes["value_spans_ms"] = medianMs(o.bakeRepeats, [&] {
         cellSpans = render::spanGrid(scan, window, render::kRayCellVoxels, 1 + margin);
-        brickSpans = render::coarsened(cellSpans);
+        bricks = render::brickSpans(cellSpans);
     });
     bakes["classify_ms"] = medianMs(o.bakeRepeats, [&] {
         const render::VisibleValues visible(
             render::classifyingTransfers(base, labels != nullptr), window,
             base.render.classification == Classification::Preintegrated);
-        (void)render::brickOccupancy(brickSpans, gv.box, scan.spacing, visible);
+        (void)render::brickOccupancy(bricks, gv.box, scan.spacing, visible);
         (void)render::rayCells(cellSpans, visible);
     });
     bakes["distance_field_ms"] = featureMs("surface");

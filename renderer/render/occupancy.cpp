@@ -8,6 +8,9 @@
 #include <tuple>
 
 namespace cutaway::render {
+
+static_assert(kSpanSteps == kPreintegrationSize - 1, "the spans' steps are the tables' bins");
+
 namespace {
 
 // The summed-area table of occ.flags.
@@ -56,11 +59,14 @@ SpanGrid spanGrid(const Volume& scan, bake::ValueWindow window, int cellVoxels, 
                 row[std::size_t(x)] = static_cast<float>(
                     std::clamp((scan.value(base + std::size_t(x)) - window.lo) * scale, 0.0, 1.0));
             for (int cx = 0; cx < n.x; ++cx) {
-                ValueSpan r;
+                const int first = std::max(cx * k - extra, 0);
                 const int last = std::min(cx * k + k - 1 + extra, scan.dims.x - 1);
-                for (int x = std::max(cx * k - extra, 0); x <= last; ++x)
-                    r.add(row[std::size_t(x)]);
-                rowSpans[std::size_t(cx)] = r;
+                float lo = row[std::size_t(first)], hi = lo;
+                for (int x = first + 1; x <= last; ++x) {
+                    lo = std::min(lo, row[std::size_t(x)]);
+                    hi = std::max(hi, row[std::size_t(x)]);
+                }
+                rowSpans[std::size_t(cx)] = ValueSpan::covering(lo, hi);
             }
             const auto [cy0, cy1] = cellsOf(y, n.y);
             for (int cy = cy0; cy <= cy1; ++cy)
@@ -135,7 +141,7 @@ BrickOccupancy brickOccupancy(const SpanGrid& bricks, const Box& box, glm::dvec3
     occ.flags.resize(bricks.spans.size());
     std::transform(bricks.spans.begin(), bricks.spans.end(), occ.flags.begin(),
                    [&](const ValueSpan& r) {
-                       return uint8_t(r.lo <= r.hi && visible.anyIn(r.lo, r.hi) ? 1 : 0);
+                       return uint8_t(!r.empty() && visible.anyIn(r.low(), r.high()) ? 1 : 0);
                    });
     fillSums(occ);
     return occ;

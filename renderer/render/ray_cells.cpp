@@ -7,41 +7,50 @@ namespace cutaway::render {
 
 // Two raster passes of the 26-neighbour chamfer mask with unit weights, which
 // is exact for this metric (a shortest chessboard path splits into steps the
-// forward pass follows, then steps the backward pass follows), in place and
-// without the fronts a breadth-first search keeps.
+// forward pass follows, then steps the backward pass follows), without the
+// fronts a breadth-first search keeps. The grid is padded by a cell of kFar
+// on every side, so a neighbour is an offset, never a bounds check (the cells
+// of 2^3 voxels number an eighth of the voxels: 4 M on the frog).
 std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>& flags) {
-    constexpr int kFar = 255;
-    std::vector<uint8_t> distance(flags.size());
-    std::transform(flags.begin(), flags.end(), distance.begin(),
-                   [](uint8_t f) { return uint8_t(f ? 0 : kFar); });
+    constexpr uint8_t kFar = 255;
+    const glm::ivec3 p = n + 2;
+    const std::ptrdiff_t sx = 1, sy = p.x, sz = std::ptrdiff_t(p.x) * p.y;
+    std::vector<uint8_t> padded(std::size_t(sz) * std::size_t(p.z), kFar);
+    const auto at = [&](int x, int y, int z) { return (x + 1) * sx + (y + 1) * sy + (z + 1) * sz; };
+    for (int z = 0; z < n.z; ++z)
+        for (int y = 0; y < n.y; ++y)
+            for (int x = 0; x < n.x; ++x)
+                padded[std::size_t(at(x, y, z))] =
+                    flags[std::size_t(x) + std::size_t(n.x) * (y + std::size_t(n.y) * z)] ? 0
+                                                                                          : kFar;
     // The 13 neighbours that come before a cell in raster order (x fastest).
-    std::array<glm::ivec3, 13> before{};
+    std::array<std::ptrdiff_t, 13> before{};
     int count = 0;
     for (int dz = -1; dz <= 0; ++dz)
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx)
                 if (dz < 0 || dy < 0 || (dy == 0 && dx < 0))
-                    before[std::size_t(count++)] = {dx, dy, dz};
-    const auto at = [&](glm::ivec3 c) -> uint8_t& {
-        return distance[std::size_t(c.x) + std::size_t(n.x) * (c.y + std::size_t(n.y) * c.z)];
-    };
-    const auto relax = [&](glm::ivec3 c, int sign) {
-        uint8_t& d = at(c);
-        for (const glm::ivec3 step : before) {
-            const glm::ivec3 q = c + sign * step;
-            if (glm::any(glm::lessThan(q, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(q, n)))
-                continue;
-            d = uint8_t(std::min(int(d), std::min(int(at(q)) + 1, kFar)));
-        }
+                    before[std::size_t(count++)] = dx * sx + dy * sy + dz * sz;
+    uint8_t* d = padded.data();
+    const auto relax = [&](std::ptrdiff_t i, std::ptrdiff_t sign) {
+        int best = d[i];
+        for (const std::ptrdiff_t step : before)
+            best = std::min(best, int(d[i + sign * step]) + 1);
+        d[i] = uint8_t(std::min(best, int(kFar)));
     };
     for (int z = 0; z < n.z; ++z)
         for (int y = 0; y < n.y; ++y)
-            for (int x = 0; x < n.x; ++x)
-                relax({x, y, z}, 1);
+            for (std::ptrdiff_t i = at(0, y, z), end = i + n.x; i < end; ++i)
+                relax(i, 1);
     for (int z = n.z - 1; z >= 0; --z)
         for (int y = n.y - 1; y >= 0; --y)
-            for (int x = n.x - 1; x >= 0; --x)
-                relax({x, y, z}, -1);
+            for (std::ptrdiff_t i = at(n.x - 1, y, z), end = i - n.x; i > end; --i)
+                relax(i, -1);
+    std::vector<uint8_t> distance(flags.size());
+    for (int z = 0; z < n.z; ++z)
+        for (int y = 0; y < n.y; ++y)
+            std::copy_n(padded.begin() + at(0, y, z), n.x,
+                        distance.begin() + std::ptrdiff_t(n.x) * (y + std::ptrdiff_t(n.y) * z));
     return distance;
 }
 
@@ -58,7 +67,7 @@ RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
                 const std::size_t i =
                     std::size_t(cx) + std::size_t(n.x) * (cy + std::size_t(n.y) * cz);
                 const ValueSpan& s = spans.spans[i];
-                if (s.lo > s.hi || !visible.anyIn(s.lo, s.hi)) continue;
+                if (s.empty() || !visible.anyIn(s.low(), s.high())) continue;
                 result.flags[i] = 1;
                 result.lo = glm::min(result.lo, glm::ivec3(cx, cy, cz));
                 result.hi = glm::max(result.hi, glm::ivec3(cx, cy, cz) + 1);
@@ -67,6 +76,13 @@ RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
         result.lo = result.hi = glm::ivec3(0);
     result.distance = chessboardDistance(n, result.flags);
     return result;
+}
+
+SpanGrid brickSpans(const SpanGrid& cells) {
+    SpanGrid bricks = cells;
+    while (bricks.cellVoxels < kBrickVoxels)
+        bricks = coarsened(bricks);
+    return bricks;
 }
 
 RayCells rayCells(const Volume& scan, bake::ValueWindow window, const VisibleValues& visible,

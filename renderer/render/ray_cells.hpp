@@ -13,8 +13,10 @@
 
 namespace cutaway::render {
 
-constexpr int kRayCellVoxels = 4;
-static_assert(kBrickVoxels == 2 * kRayCellVoxels, "bricks take their spans from the cells");
+constexpr int kRayCellVoxels = 2;
+static_assert(kBrickVoxels % kRayCellVoxels == 0 &&
+                  ((kBrickVoxels / kRayCellVoxels) & (kBrickVoxels / kRayCellVoxels - 1)) == 0,
+              "bricks take their spans from the cells, coarsened by powers of 2");
 
 struct RayCells {
     glm::ivec3 cells{0};
@@ -30,6 +32,10 @@ struct RayCells {
 /// the chessboard (L-infinity) distance in cells to the nearest set one, at
 /// most 255 (255 everywhere when none is).
 std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>& flags);
+
+/// The slicing bricks' spans (kBrickVoxels) from the ray caster's cells'
+/// with the same reach: their 2x2x2 unions, taken until the cells are bricks.
+SpanGrid brickSpans(const SpanGrid& cells);
 
 /// The cells whose spans (kRayCellVoxels cells reaching 1 + the margin) are
 /// `spans`, where `visible` says which values can show.

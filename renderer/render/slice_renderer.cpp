@@ -193,7 +193,7 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
     }
     if (key != m_occupiedKey) {
         m_visible.emplace(transfers, volume.window, preintegrated);
-        m_occupancy = m_cellSpans ? brickOccupancy(coarsened(*m_cellSpans), volume.box,
+        m_occupancy = m_cellSpans ? brickOccupancy(brickSpans(*m_cellSpans), volume.box,
                                                    volume.spacing, *m_visible)
                                   : fullOccupancy(volume.box);
         m_occupied = m_occupancy.boxes();

@@ -236,7 +236,38 @@ TEST(RayCells, FlagEachCellByTheValuesItsSamplesRead) {
     EXPECT_EQ(empty.lo, empty.hi);
 }
 
-TEST(SpanGrid, TwiceTheCellIsTheUnionOfItsEight) {
+TEST(SpanGrid, SpansKeptInStepsStillCoverTheirValues) {
+    // Spans are kept in 1/255 steps, rounded outward: a span must contain the
+    // values it was made of, so that a cell whose exact span may show is never
+    // flagged empty; and it must be no more than a step wider on each side.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const TransferFunction narrow = band(121.3, 122.9); // visible in a bin or two
+    for (bool preintegrated : {true, false}) {
+        const render::VisibleValues visible({&narrow}, kWindow, preintegrated);
+        int shown = 0;
+        for (int i = 0; i < 20000; ++i) {
+            float a = unit(rng), b = unit(rng);
+            if (i % 2) b = a + 0.01f * unit(rng) * unit(rng); // many narrow spans
+            if (a > b) std::swap(a, b);
+            b = std::min(b, 1.0f);
+            const render::ValueSpan span = render::ValueSpan::covering(a, b);
+            ASSERT_FALSE(span.empty());
+            ASSERT_LE(span.low(), a) << a;
+            ASSERT_GE(span.high(), b) << b;
+            ASSERT_GT(span.low(), a - 1.0f / 255.0f - 1e-6f) << a;
+            ASSERT_LT(span.high(), b + 1.0f / 255.0f + 1e-6f) << b;
+            if (visible.anyIn(a, b)) {
+                ++shown;
+                ASSERT_TRUE(visible.anyIn(span.low(), span.high())) << a << " " << b;
+            }
+        }
+        EXPECT_GT(shown, 100) << "the band must be met";
+    }
+    EXPECT_TRUE(render::ValueSpan{}.empty());
+}
+
+TEST(SpanGrid, BricksAreTheUnionsOfTheirCells) {
     // Bricks take their spans from the ray caster's cells (one pass over the
     // scan): exact, partial last cells and clamping included.
     std::mt19937 rng(7);
@@ -246,11 +277,12 @@ TEST(SpanGrid, TwiceTheCellIsTheUnionOfItsEight) {
         for (std::byte& b : v.data)
             b = std::byte(static_cast<uint8_t>(rng() % 256));
         for (int extra : {1, 2, 3, 6}) {
-            const render::SpanGrid direct = render::spanGrid(v, kWindow, 8, extra);
+            const render::SpanGrid direct =
+                render::spanGrid(v, kWindow, render::kBrickVoxels, extra);
             const render::SpanGrid merged =
-                render::coarsened(render::spanGrid(v, kWindow, 4, extra));
+                render::brickSpans(render::spanGrid(v, kWindow, kRayCellVoxels, extra));
             ASSERT_EQ(merged.cells, direct.cells);
-            ASSERT_EQ(merged.cellVoxels, 8);
+            ASSERT_EQ(merged.cellVoxels, render::kBrickVoxels);
             ASSERT_EQ(merged.spans.size(), direct.spans.size());
             for (std::size_t i = 0; i < direct.spans.size(); ++i) {
                 EXPECT_EQ(merged.spans[i].lo, direct.spans[i].lo) << i << " extra " << extra;
@@ -265,7 +297,8 @@ TEST(RayCells, DistancesAreChessboardDistancesToTheNearestOccupiedCell) {
     // lines, against the definition; far from every occupied cell it saturates.
     const TransferFunction tf = band(90.0, 150.0);
     const render::VisibleValues visible({&tf}, kWindow, false);
-    const render::ValueSpan shows{120.0f / 255.0f, 120.0f / 255.0f}, clear{0.0f, 0.0f};
+    const render::ValueSpan shows = render::ValueSpan::covering(120.0f / 255.0f, 120.0f / 255.0f),
+                            clear = render::ValueSpan::covering(0.0f, 0.0f);
     std::mt19937 rng(11);
     const glm::ivec3 n(37, 21, 300);
     for (int layout = 0; layout < 3; ++layout) {
