@@ -187,15 +187,18 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
                                       double(marginVoxels)};
     if (spanKey != m_spanKey) {
         m_cellSpans.reset();
-        if (volume.scan)
+        m_brickSpans.reset();
+        if (volume.scan) {
             m_cellSpans = spanGrid(*volume.scan, volume.window, kRayCellVoxels, 1 + marginVoxels);
+            m_brickSpans = brickSpans(*m_cellSpans);
+        }
         m_spanKey = spanKey;
     }
     if (key != m_occupiedKey) {
         m_visible.emplace(transfers, volume.window, preintegrated);
-        m_occupancy = m_cellSpans ? brickOccupancy(brickSpans(*m_cellSpans), volume.box,
-                                                   volume.spacing, *m_visible)
-                                  : fullOccupancy(volume.box);
+        m_occupancy = m_brickSpans
+                          ? brickOccupancy(*m_brickSpans, volume.box, volume.spacing, *m_visible)
+                          : fullOccupancy(volume.box);
         m_occupied = m_occupancy.boxes();
         m_occupiedKey = std::move(key);
         ++m_occupancySerial;

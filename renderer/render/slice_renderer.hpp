@@ -135,8 +135,8 @@ private:
     gpu::ImageViewHandle m_rayDepthView; ///< its depth aspect, sampled
     gpu::Image m_noMeshDepth;            ///< 1x1 R32F of 1: the rays' depth without meshes
     gpu::Buffer m_rayIdReadback;
-    std::optional<SpanGrid> m_cellSpans;    ///< the ray caster's cells; the bricks' are their 2x2x2
-                                            ///< unions (null: no host scan)
+    std::optional<SpanGrid> m_cellSpans;    ///< the ray caster's cells (null: no host scan)
+    std::optional<SpanGrid> m_brickSpans;   ///< the slicing bricks': the cells' unions
     std::vector<double> m_spanKey;          ///< volume, window, margin
     std::optional<VisibleValues> m_visible; ///< what the frame's classification can show
     BrickOccupancy m_occupancy;
