@@ -56,10 +56,14 @@ private:
 constexpr int kSpanSteps = 255;
 struct ValueSpan {
     uint8_t lo = kSpanSteps, hi = 0;
-    /// The span of the values in [lo, hi] (normalized, in [0, 1]).
+    /// The span of the values in [lo, hi] (normalized, in [0, 1]); its ends
+    /// as floats (low(), high()) hold them, whatever the products round to.
     static ValueSpan covering(float lo, float hi) {
-        return {static_cast<uint8_t>(std::floor(lo * float(kSpanSteps))),
-                static_cast<uint8_t>(std::ceil(hi * float(kSpanSteps)))};
+        int a = static_cast<int>(std::floor(lo * float(kSpanSteps)));
+        int b = static_cast<int>(std::ceil(hi * float(kSpanSteps)));
+        if (a > 0 && float(a) / float(kSpanSteps) > lo) --a;
+        if (b < kSpanSteps && float(b) / float(kSpanSteps) < hi) ++b;
+        return {static_cast<uint8_t>(a), static_cast<uint8_t>(b)};
     }
     void add(const ValueSpan& s) {
         lo = std::min(lo, s.lo);

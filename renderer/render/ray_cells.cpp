@@ -95,7 +95,8 @@ RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
 }
 
 SpanGrid brickSpans(const SpanGrid& cells) {
-    SpanGrid bricks = cells;
+    if (cells.cellVoxels >= kBrickVoxels) return cells;
+    SpanGrid bricks = coarsened(cells); // no copy of the (large) fine grid
     while (bricks.cellVoxels < kBrickVoxels)
         bricks = coarsened(bricks);
     return bricks;
