@@ -47,19 +47,29 @@ protected:
         std::ofstream(m_dir / "table.json") << table.dump();
         return m_dir / "table.json";
     }
+    struct BenchRun {
+        CommandResult result;
+        json records; ///< what it wrote to --json (null when it failed)
+    };
+    // The benchmark on the tiny table with `args`, its records written to `name`.
+    BenchRun runBench(const std::string& name, const std::string& args) {
+        const auto table = writeTable();
+        const auto results = m_dir / name;
+        BenchRun run{runProgram(CUTAWAY_BENCH, "--table " + table.string() + " --json " +
+                                                   results.string() + " " + args),
+                     {}};
+        if (run.result.code == 0) std::ifstream(results) >> run.records;
+        return run;
+    }
 };
 
 TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
-    const auto table = writeTable();
-    const auto results = m_dir / "results.json";
     const auto vtk = m_dir / "vtk";
-    const CommandResult r = runProgram(
-        CUTAWAY_BENCH, "--table " + table.string() + " --json " + results.string() + " --vtk-dir " +
-                           vtk.string() + " --frames 2 --spacings 1.0,0.5 --size 32 --turntable 2");
+    const auto [r, records] =
+        runBench("results.json", "--vtk-dir " + vtk.string() +
+                                     " --frames 2 --spacings 1.0,0.5 --size 32 --turntable 2");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(r.output.find("vulkan validation"), std::string::npos) << r.output;
-    json records;
-    std::ifstream(results) >> records;
     int frames = 0, turntables = 0;
     for (const json& rec : records) {
         if (rec.value("kind", "") == "turntable") {
@@ -125,15 +135,10 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
 
 TEST_F(BenchCli, WithoutBakeRepeatsOnlyTheFramesAreTimed) {
     // What vtk_bench.py runs just before and after VTK to pair the two.
-    const auto table = writeTable();
-    const auto results = m_dir / "paired.json";
-    const CommandResult r = runProgram(
-        CUTAWAY_BENCH, "--table " + table.string() + " --json " + results.string() +
-                           " --alignments none --methods raycast --spacings 1.0 --frames 1"
-                           " --size 32 --turntable 0 --bake-repeats 0");
+    const auto [r, records] =
+        runBench("paired.json", "--alignments none --methods raycast --spacings 1.0"
+                                " --frames 1 --size 32 --turntable 0 --bake-repeats 0");
     ASSERT_EQ(r.code, 0) << r.output;
-    json records;
-    std::ifstream(results) >> records;
     ASSERT_EQ(records.size(), 1u) << records.dump();
     EXPECT_EQ(records[0]["method"], "raycast");
     EXPECT_GT(records[0]["ms_median"].get<double>(), 0.0);
@@ -142,16 +147,11 @@ TEST_F(BenchCli, WithoutBakeRepeatsOnlyTheFramesAreTimed) {
 }
 
 TEST_F(BenchCli, TheCensusCountsTheRayCastRowsSamples) {
-    const auto table = writeTable();
-    const auto results = m_dir / "census.json";
-    const CommandResult r = runProgram(
-        CUTAWAY_BENCH, "--table " + table.string() + " --json " + results.string() +
-                           " --alignments none,axis --methods raycast,slicing --spacings 1.0"
-                           " --frames 1 --size 32 --turntable 0 --bake-repeats 0 --census");
+    const auto [r, records] =
+        runBench("census.json", "--alignments none,axis --methods raycast,slicing --spacings 1.0"
+                                " --frames 1 --size 32 --turntable 0 --bake-repeats 0 --census");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(r.output.find("vulkan validation"), std::string::npos) << r.output;
-    json records;
-    std::ifstream(results) >> records;
     ASSERT_EQ(records.size(), 4u) << records.dump();
     for (const json& rec : records) {
         SCOPED_TRACE(rec.dump());
