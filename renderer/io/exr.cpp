@@ -14,8 +14,10 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <limits>
@@ -127,8 +129,11 @@ void writePixels(const fs::path& tmp, const Imf::Header& header, const Pixel* pi
         file.setFrameBuffer(frameBuffer);
         file.writePixels(height);
     }
-    out.close();
-    if (!out) throw RuntimeError("write error (disk full?)");
+    errno = 0;
+    out.close(); // the last buffered bytes go out here, and may not fit
+    if (!out)
+        throw RuntimeError(std::string("write error: ") +
+                           (errno ? std::strerror(errno) : "the stream failed (disk full?)"));
 }
 
 } // namespace

@@ -73,4 +73,17 @@ ImageDiff compareImages(const Image& a, const Image& b) {
     return d;
 }
 
+bool GpuTest::filtersInFloat() const {
+    return ctx().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+}
+
+void GpuTest::expectAgree(const Image& a, const Image& b, float precise, const std::string& what,
+                          double quantizedRms) const {
+    const ImageDiff d = compareImages(a, b);
+    const bool agree = filtersInFloat() ? d.maxAbs <= precise
+                                        : d.maxAbs <= kQuantizedMaxAbs && d.rms <= quantizedRms;
+    EXPECT_TRUE(agree) << what << ": max " << d.maxAbs << ", rms " << d.rms << " on "
+                       << ctx().deviceName();
+}
+
 } // namespace cutaway::test

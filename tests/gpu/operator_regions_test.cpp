@@ -167,7 +167,10 @@ TEST_F(OperatorRegionsRender, SkippingChangesNoPixel) {
                 // up to 1e-4), and where two regions' polygons meet in a T-junction
                 // a pixel centre on the seam can be shaded twice or not at all (as
                 // between the volume's brick boxes): a few pixels, one sample
-                // each. A region missing would change whole areas.
+                // each. A region missing would change whole areas. Where the filter
+                // quantizes its weights, the rounding moves more samples
+                // (expectAgree): up to 307 pixels by up to 0.15 on an H200.
+                if (!filtersInFloat()) expectAgree(whole, skipped, 0.0f, "regions");
                 int seams = 0;
                 float worst = 0.0f;
                 for (std::size_t i = 0; i < whole.rgba.size(); i += 4) {
@@ -177,8 +180,10 @@ TEST_F(OperatorRegionsRender, SkippingChangesNoPixel) {
                     worst = std::max(worst, e);
                     seams += e > 1e-3f;
                 }
-                EXPECT_LE(seams, 4) << "worst " << worst;
-                EXPECT_LE(worst, 0.02f);
+                if (filtersInFloat()) {
+                    EXPECT_LE(seams, 4) << "worst " << worst;
+                    EXPECT_LE(worst, 0.02f);
+                }
                 // The ray caster steps over the empty blocks: exactly the
                 // samples the whole box would make transparent, so no pixel
                 // may change at all.

@@ -93,18 +93,24 @@ protected:
         }
         return double(n) / double(a.rgba.size() / 4);
     }
-    // Renders `scene` both ways; returns the share of pixels that differ by
-    // more than the ray caster's tolerance without operators (2e-3: early
-    // termination and rounding), and checks the mean difference. `castOut`
-    // receives the ray caster's image.
-    double differingShare(const json& scene, const std::string& what, Image* castOut = nullptr) {
+    // Renders `scene` both ways and checks they agree: less than kFaceShare of
+    // the pixels differ by more than the ray caster's tolerance without
+    // operators (2e-3: early termination and rounding), and the mean
+    // difference is small. Where the filter quantizes its weights the rounding
+    // moves more pixels (up to 1.7 % on an H200): there the images agree as
+    // expectAgree says. `castOut` receives the ray caster's image.
+    void expectMatchesSlicing(const json& scene, const std::string& what,
+                              Image* castOut = nullptr) {
         const Image sliced = render(scene, "slicing");
         const Image cast = render(scene, "raycast");
         if (castOut) *castOut = cast;
+        if (!filtersInFloat()) {
+            expectAgree(sliced, cast, 0.0f, what);
+            return;
+        }
         const ImageDiff d = compareImages(sliced, cast);
         EXPECT_LT(d.meanAbs, 1e-3) << what << ": max " << d.maxAbs;
-        const double differing = share(sliced, cast);
-        return differing;
+        EXPECT_LT(share(sliced, cast), kFaceShare) << what;
     }
     // Measured: at most 0.04 % of the pixels in these scenes; on ct_head at 256^2
     // with a retractor, 0.1 %. An operator shaded with another's map or
@@ -120,7 +126,7 @@ TEST_F(RaycastOperators, MatchSlicingForEveryKindAndAlignment) {
             const std::string what =
                 json::parse(op)["type"].get<std::string>() + " " + (alignment ? alignment : "axis");
             Image cast;
-            EXPECT_LT(differingShare(scene, what, &cast), kFaceShare) << what;
+            expectMatchesSlicing(scene, what, &cast);
             EXPECT_GT(share(cast, untouched), 2.0 * kFaceShare)
                 << what << ": the operator must show";
         }
@@ -129,12 +135,12 @@ TEST_F(RaycastOperators, MatchSlicingForEveryKindAndAlignment) {
 TEST_F(RaycastOperators, MatchSlicingPostClassifiedAndWithLongSlabs) {
     json scene = withOperators({{kPeeler, kSurface}});
     scene["render"]["classification"] = "post";
-    EXPECT_LT(differingShare(scene, "post-classified"), kFaceShare);
+    expectMatchesSlicing(scene, "post-classified");
     scene["render"]["classification"] = "preintegrated";
     scene["render"]["slice_spacing"] = 4.0;
-    EXPECT_LT(differingShare(scene, "d = 4"), kFaceShare);
+    expectMatchesSlicing(scene, "d = 4");
     scene["camera"]["projection"] = "orthographic";
-    EXPECT_LT(differingShare(scene, "orthographic"), kFaceShare);
+    expectMatchesSlicing(scene, "orthographic");
 }
 
 TEST_F(RaycastOperators, EachOperatorTakesItsOwnSlot) {
@@ -148,7 +154,7 @@ TEST_F(RaycastOperators, EachOperatorTakesItsOwnSlot) {
                "params": { "opening": 10 } })",
           kSurface}});
     Image all;
-    EXPECT_LT(differingShare(scene, "peeler, dilator and retractor", &all), kFaceShare);
+    expectMatchesSlicing(scene, "peeler, dilator and retractor", &all);
     for (std::size_t i = 0; i < 3; ++i) {
         json without = scene;
         without["operators"].erase(i);
@@ -156,7 +162,7 @@ TEST_F(RaycastOperators, EachOperatorTakesItsOwnSlot) {
             << "operator " << i << " must show";
     }
     scene["operators"].erase(2);
-    EXPECT_LT(differingShare(scene, "peeler and dilator"), kFaceShare);
+    expectMatchesSlicing(scene, "peeler and dilator");
 }
 
 TEST_F(RaycastOperators, SequentialCompositionRaysTheLastOperator) {
@@ -164,17 +170,20 @@ TEST_F(RaycastOperators, SequentialCompositionRaysTheLastOperator) {
     // slices see the result and the peeler alone.
     json scene = withOperators({{kDilator, nullptr}, {kPeeler, kSurface}});
     scene["render"]["operator_composition"] = "sequential";
-    EXPECT_LT(differingShare(scene, "sequential"), kFaceShare);
+    expectMatchesSlicing(scene, "sequential");
 }
 
 TEST_F(RaycastOperators, TheToleranceSeesAnOperatorGone) {
     // The comparisons above can fail: without the operator, or with another
     // alignment, far more pixels differ.
+    // On any device (expectAgree).
     const json peeled = withOperators({{kPeeler, kSurface}});
     const Image sliced = render(peeled, "slicing");
-    EXPECT_GT(share(render(phantomScene(), "raycast"), sliced), 5.0 * kFaceShare);
-    EXPECT_GT(share(render(withOperators({{kPeeler, nullptr}}), "raycast"), sliced),
-              5.0 * kFaceShare);
+    for (const json& other : {phantomScene(), withOperators({{kPeeler, nullptr}})}) {
+        const Image cast = render(other, "raycast");
+        EXPECT_GT(share(cast, sliced), 5.0 * kFaceShare);
+        EXPECT_GT(compareImages(cast, sliced).rms, 2.0 * kQuantizedRms);
+    }
 }
 
 TEST_F(RaycastOperators, RefusesWhatOnlySlicingDraws) {

@@ -45,8 +45,7 @@ protected:
     double expectSameAsSlicing(const json& scene, const std::string& what) {
         const Image sliced = render(ctx(), scene, "slicing");
         const Image cast = render(ctx(), scene, "raycast");
-        const ImageDiff d = compareImages(sliced, cast);
-        EXPECT_LT(d.maxAbs, kTolerance) << what << ": rms " << d.rms;
+        expectAgree(sliced, cast, kTolerance, what);
         double coverage = 0.0;
         for (std::size_t i = 3; i < cast.rgba.size(); i += 4)
             coverage += cast.rgba[i];
@@ -219,13 +218,16 @@ TEST_F(Raycast, FramesHoldNoSlicingTargets) {
 }
 
 TEST_F(Raycast, TheToleranceSeesADifferentStep) {
-    // The comparisons above can fail: samples 1.5 planes apart instead of 1
-    // differ from slicing by far more than the tolerance.
+    // The comparisons above can fail: samples 2 planes apart instead of 1
+    // differ from slicing by far more than the tolerance, on any device
+    // (expectAgree).
     json scene = headScene();
     const Image sliced = render(ctx(), scene, "slicing");
-    scene["render"]["slice_spacing"] = 1.5;
+    scene["render"]["slice_spacing"] = 2.0;
     const Image coarser = render(ctx(), scene, "raycast");
-    EXPECT_GT(compareImages(sliced, coarser).maxAbs, 10.0f * kTolerance);
+    const ImageDiff d = compareImages(sliced, coarser);
+    EXPECT_GT(d.maxAbs, 10.0f * kTolerance);
+    EXPECT_GT(d.rms, 2.0 * kQuantizedRms);
 }
 
 } // namespace

@@ -94,28 +94,31 @@ TEST_F(GpuTest, NothingIsDrawnOutsideTheProjectedBox) {
 }
 
 TEST_F(GpuTest, SymmetricPhantomUnderSymmetricViewGivesSymmetricImage) {
+    const auto mirrored = [](Image img) {
+        for (int y = 0; y < img.height; ++y)
+            for (int x = 0; x < img.width / 2; ++x)
+                for (int c = 0; c < 4; ++c)
+                    std::swap(img.pixel(x, y)[c], img.pixel(img.width - 1 - x, y)[c]);
+        return img;
+    };
     Scene scene = headScene(48, 64, 48);
-    Image img = renderScene(ctx(), scene);
-    float worst = 0.0f, total = 0.0f;
-    for (int y = 0; y < img.height; ++y)
-        for (int x = 0; x < img.width / 2; ++x)
-            for (int c = 0; c < 4; ++c) {
-                worst = std::max(worst,
-                                 std::abs(img.pixel(x, y)[c] - img.pixel(img.width - 1 - x, y)[c]));
-                total += img.pixel(x, y)[c];
-            }
+    const Image img = renderScene(ctx(), scene);
+    float total = 0.0f;
+    for (float v : img.rgba)
+        total += v;
     EXPECT_GT(total, 10.0f) << "image is empty";
-    EXPECT_LE(worst, 2e-3f); // float rasterization and 8-bit gradients; measured ~1e-6 on lavapipe
+    // Float rasterization and 8-bit gradients: measured ~1e-6 on lavapipe. The
+    // mirrored sample points round otherwise (expectAgree), and a GPU's rounding
+    // weighs more in this small image: rms 4.8e-3 on an H200.
+    const double quantizedRms = 8e-3;
+    expectAgree(img, mirrored(img), 2e-3f, "mirrored", quantizedRms);
 
-    // The same check must fail when the view is not symmetric.
+    // The same check must fail when the view is not symmetric, on any device.
     scene.camera.azimuthDeg = 25.0;
-    Image turned = renderScene(ctx(), scene);
-    float asym = 0.0f;
-    for (int y = 0; y < turned.height; ++y)
-        for (int x = 0; x < turned.width / 2; ++x)
-            asym = std::max(
-                asym, std::abs(turned.pixel(x, y)[3] - turned.pixel(turned.width - 1 - x, y)[3]));
-    EXPECT_GT(asym, 0.05f);
+    const Image turned = renderScene(ctx(), scene);
+    const ImageDiff asym = compareImages(turned, mirrored(turned));
+    EXPECT_GT(asym.maxAbs, 0.05f);
+    EXPECT_GT(asym.rms, 2.0 * quantizedRms); // 0.020 on lavapipe
 }
 
 TEST_F(GpuTest, HalvingSliceSpacingWithOpacityCorrectionChangesLittle) {
@@ -217,8 +220,7 @@ TEST_F(GpuTest, TheDefaultFramingDoesNotFollowTheOperators) {
             ctx(),
             scene(std::string(R"([{ "type": "pliers", "placement": { "translate": )") + at +
                   R"(, "scale": [20, 20, 20] }, "params": { "displacement": [0, 0, 0] } }])"));
-        const ImageDiff d = compareImages(plain, still);
-        EXPECT_LT(d.maxAbs, 2e-3f) << "rms " << d.rms;
+        expectAgree(plain, still, 2e-3f, "pliers that move nothing");
     }
 }
 

@@ -73,8 +73,10 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
                 // 3.6e-7 (float rounding: lavapipe weighs 16-bit texels in
                 // float too). A filter that mixed up two axes or missed the
                 // clamp moves whole edges by more than 0.1.
-                EXPECT_LT(d.maxAbs, format == VK_FORMAT_R8_UNORM ? 0.03f : 1e-5f)
-                    << "rms " << d.rms;
+                // A GPU weighs 16-bit texels in 8 bits too (expectAgree): up to
+                // 0.0033 on an H200.
+                const bool quantized = format == VK_FORMAT_R8_UNORM || !filtersInFloat();
+                EXPECT_LT(d.maxAbs, quantized ? 0.03f : 1e-5f) << "rms " << d.rms;
                 EXPECT_LT(d.rms, 2e-3);
                 if (format == VK_FORMAT_R8_UNORM) {
                     EXPECT_GT(d.maxAbs, 0.0f) << "the same to the bit: not loaded and filtered";
