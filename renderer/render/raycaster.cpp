@@ -81,7 +81,7 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                    {4, sampled, 1, cs, nullptr},
                                    {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
                                    {6, storage, 1, cs, nullptr},
-                                   {8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, cs, nullptr},
+                                   {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
                                    {9, storage, 1, cs, nullptr},
                                    {10, storage, 1, cs, nullptr},
                                    {11, storage, 1, cs, nullptr},
@@ -97,7 +97,7 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
     m_operatorLayout = gpu::createPipelineLayout(ctx, sets, sizeof(RayPush), cs);
     m_operatorUniforms =
         gpu::createBuffer(ctx, sizeof(shader::OperatorUniforms) * CW_RAY_MAX_OPERATORS,
-                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
 }
 
 gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
@@ -105,10 +105,10 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
-                                                        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+                                                        {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                                          {sampled, 5},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}});
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
     gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, in.values, bake::kValuesLayout, m_linear);
@@ -128,7 +128,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
                               m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                               m_cells.distance.view.get(), VK_IMAGE_LAYOUT_GENERAL);
-    gpu::writeBufferDescriptor(m_ctx, set.set, 8, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+    gpu::writeBufferDescriptor(m_ctx, set.set, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                m_operatorUniforms.buffer.get(), m_operatorUniforms.size);
     // Slots without an operator repeat the first one's, or the cells' (unread,
     // but lavapipe binds every descriptor of a set).

@@ -300,9 +300,12 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
 layout(constant_id = 6) const int cwOperatorCount = 1; // 1..CW_RAY_MAX_OPERATORS
 layout(constant_id = 7) const int cwAlignment1 = 0;    // slot 1's CW_ALIGN_*; slot 0's is
 layout(constant_id = 8) const int cwAlignment2 = 0;    // cwAlignment
-// The slots' uniforms, all in one buffer of set 0: lavapipe (Mesa 22.3)
-// crashed reading a fourth uniform buffer in a compute shader.
-layout(std140, set = 0, binding = 8) uniform RayOperators {
+// The slots' uniforms, all in one buffer of set 0 (lavapipe, Mesa 22.3,
+// crashed reading a fourth uniform buffer in a compute shader), and a storage
+// buffer: from a uniform buffer, lavapipe inlined the values that steer
+// branches and compiled the shader again at every dispatch, keeping each copy
+// (about 1 MB a frame; GpuTest.RepeatedFramesCompileNothingNew).
+layout(std140, set = 0, binding = 8) readonly buffer RayOperators {
     OperatorUniforms ops[CW_RAY_MAX_OPERATORS];
 }
 slots;

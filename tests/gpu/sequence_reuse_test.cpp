@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <gtest/gtest.h>
+#include <string>
 
 namespace cutaway::test {
 namespace {
@@ -85,6 +87,37 @@ TEST_F(GpuTest, FeatureFieldsAreKeptWhileWantedAndFreedBeforeTheNextBakes) {
     EXPECT_EQ(renderer.takeNotes().size(), 1u);
     EXPECT_LT(ctx().memoryPeak(), segmentAlone + 64u * 64u * 64u * 8u / 2u)
         << "the old field was held during the bake";
+}
+
+// Repeated frames make the driver compile nothing new. lavapipe (Mesa 22.3)
+// compiled the ray caster's operator shader again at every dispatch while the
+// operators' uniforms sat in a uniform buffer (it inlines uniform values that
+// steer branches) and kept every copy: about 1 MB a frame, and a compile.
+// Counted as the process's executable mappings, where a CPU driver's code
+// lives; without /proc there is nothing to count.
+TEST_F(GpuTest, RepeatedFramesCompileNothingNew) {
+    const auto codeMappings = [] {
+        std::ifstream maps("/proc/self/maps");
+        int n = 0;
+        for (std::string line; std::getline(maps, line);)
+            n += line.find(" r-xp ") != std::string::npos;
+        return n;
+    };
+    if (codeMappings() == 0) GTEST_SKIP() << "no /proc/self/maps";
+    for (RenderMethod method : {RenderMethod::Raycast, RenderMethod::Slicing}) {
+        Scene scene = alignedScene(R"({ "mode": "surface", "depth": 4 })");
+        scene.render.method = method;
+        job::FrameRenderer renderer(ctx());
+        for (int i = 0; i < 2; ++i) // the pipelines are made, the field baked
+            renderer.render(scene);
+        const int before = codeMappings();
+        for (int i = 0; i < 6; ++i) {
+            scene.camera.azimuthDeg += 10.0;
+            renderer.render(scene);
+        }
+        EXPECT_EQ(codeMappings(), before)
+            << (method == RenderMethod::Raycast ? "raycast" : "slicing");
+    }
 }
 
 } // namespace cutaway::test
