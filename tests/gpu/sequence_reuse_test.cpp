@@ -118,6 +118,24 @@ TEST_F(GpuTest, RepeatedFramesCompileNothingNew) {
         EXPECT_EQ(codeMappings(), before)
             << (method == RenderMethod::Raycast ? "raycast" : "slicing");
     }
+    // An animated peeler: its map baked again at every frame.
+    const auto peeledBy = [](int angle) {
+        return parseScene(nlohmann::json::parse(R"({ "version": 1,
+            "volume": { "phantom": "head", "size": [64, 64, 64] },
+            "render": { "size": [32, 32], "method": "raycast" },
+            "operators": [ { "type": "peeler",
+              "placement": { "translate": [0, 0, 16], "scale": [32, 32, 16] },
+              "params": { "angle": )" + std::to_string(angle) +
+                                                R"( } } ] })"),
+                          std::filesystem::temp_directory_path(), "peeled.json");
+    };
+    job::FrameRenderer renderer(ctx());
+    for (int angle : {30, 40})
+        renderer.render(peeledBy(angle));
+    const int before = codeMappings();
+    for (int angle = 50; angle < 110; angle += 10)
+        renderer.render(peeledBy(angle));
+    EXPECT_EQ(codeMappings(), before) << "an animated operator";
 }
 
 } // namespace cutaway::test
