@@ -174,9 +174,8 @@ TEST_F(RaycastOperators, SequentialCompositionRaysTheLastOperator) {
 }
 
 TEST_F(RaycastOperators, TheToleranceSeesAnOperatorGone) {
-    // The comparisons above can fail: without the operator, or with another
-    // alignment, far more pixels differ.
-    // On any device (expectAgree).
+    // The comparisons above can fail, on any device (expectAgree): without
+    // the operator, or with another alignment, far more pixels differ.
     const json peeled = withOperators({{kPeeler, kSurface}});
     const Image sliced = render(peeled, "slicing");
     for (const json& other : {phantomScene(), withOperators({{kPeeler, nullptr}})}) {
