@@ -52,14 +52,19 @@ TEST_F(GpuTest, VolumeIsUploadedOncePerSequence) {
 namespace cutaway::test {
 namespace {
 
-Scene alignedScene(const std::string& alignment) {
+// A peeler over the 64^3 head phantom; `fields` are more of its members.
+Scene peelerScene(const std::string& fields) {
     return parseScene(nlohmann::json::parse(R"({ "version": 1,
         "volume": { "phantom": "head", "size": [64, 64, 64] },
         "render": { "size": [32, 32] },
         "operators": [ { "type": "peeler",
-          "placement": { "translate": [0, 0, 16], "scale": [32, 32, 16] },
-          "alignment": )" + alignment + R"( } ] })"),
-                      std::filesystem::temp_directory_path(), "aligned.json");
+          "placement": { "translate": [0, 0, 16], "scale": [32, 32, 16] }, )" +
+                                            fields + R"( } ] })"),
+                      std::filesystem::temp_directory_path(), "peeler.json");
+}
+
+Scene alignedScene(const std::string& alignment) {
+    return peelerScene(R"("alignment": )" + alignment);
 }
 
 } // namespace
@@ -120,14 +125,9 @@ TEST_F(GpuTest, RepeatedFramesCompileNothingNew) {
     }
     // An animated peeler: its map baked again at every frame.
     const auto peeledBy = [](int angle) {
-        return parseScene(nlohmann::json::parse(R"({ "version": 1,
-            "volume": { "phantom": "head", "size": [64, 64, 64] },
-            "render": { "size": [32, 32], "method": "raycast" },
-            "operators": [ { "type": "peeler",
-              "placement": { "translate": [0, 0, 16], "scale": [32, 32, 16] },
-              "params": { "angle": )" + std::to_string(angle) +
-                                                R"( } } ] })"),
-                          std::filesystem::temp_directory_path(), "peeled.json");
+        Scene scene = peelerScene(R"("params": { "angle": )" + std::to_string(angle) + " }");
+        scene.render.method = RenderMethod::Raycast;
+        return scene;
     };
     job::FrameRenderer renderer(ctx());
     for (int angle : {30, 40})
