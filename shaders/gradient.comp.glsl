@@ -57,7 +57,8 @@ void main() {
                       (smoothY[2][i + 1] - smoothY[2][i - 1]);
             delta.y = smoothX(diffY[0], i) + 2.0 * smoothX(diffY[1], i) + smoothX(diffY[2], i);
             delta.z = smoothX(smoothY[2], i) - smoothX(smoothY[0], i);
-            imageStore(gradientImage, id + ivec3(r, 0, s),
+            ivec3 voxel = id + ivec3(r, 0, s);
+            imageStore(gradientImage, params.bricked != 0 ? gradientBrickTexel(voxel) : voxel,
                        encodeGradient(delta * (1.0 / 16.0), params));
         }
         smoothY[0] = smoothY[1];

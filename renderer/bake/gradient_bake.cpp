@@ -21,10 +21,29 @@ GradientBaker::GradientBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     m_sampler = gpu::createLinearSampler(ctx);
 }
 
+GradientLayout gradientLayoutFor(const gpu::Context& ctx, glm::ivec3 dims) {
+    if (ctx.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return GradientLayout::Linear;
+    const glm::ivec3 extent = shader::gradientBrickExtent(dims);
+    const int most = static_cast<int>(ctx.properties().limits.maxImageDimension3D);
+    return std::max({extent.x, extent.y, extent.z}) <= most ? GradientLayout::Bricked
+                                                            : GradientLayout::Linear;
+}
+
 gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing) const {
-    gpu::Image out = gpu::createImage(
-        m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8G8B8A8_SNORM, values.extent,
-        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    const VkExtent3D e = values.extent;
+    return bake(values, spacing, gradientLayoutFor(m_ctx, glm::ivec3(e.width, e.height, e.depth)));
+}
+
+gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing,
+                               GradientLayout layout) const {
+    const glm::ivec3 dims(values.extent.width, values.extent.height, values.extent.depth);
+    const bool bricked = layout == GradientLayout::Bricked;
+    const glm::ivec3 size = bricked ? shader::gradientBrickExtent(dims) : dims;
+    gpu::Image out = gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8G8B8A8_SNORM,
+                                      {static_cast<uint32_t>(size.x), static_cast<uint32_t>(size.y),
+                                       static_cast<uint32_t>(size.z)},
+                                      VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                          VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
@@ -34,12 +53,15 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing) con
                               VK_IMAGE_LAYOUT_GENERAL);
 
     shader::GradientParams params{};
-    params.dims = glm::ivec3(values.extent.width, values.extent.height, values.extent.depth);
+    params.dims = dims;
+    params.bricked = bricked ? 1 : 0;
     params.magnitudeScale = static_cast<float>(2.0 * std::min({spacing.x, spacing.y, spacing.z}));
     params.halfInvSpacing = glm::vec3(0.5 / spacing);
 
+    // The groups cover the grid (kRun wide, kColumn deep), not the bricked image.
     gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &params,
-                          sizeof(params), glm::uvec3(8 * 4, 8, 16)); // kRun wide, kColumn deep
+                          sizeof(params), glm::uvec3(8 * 4, 8, 16), kGradientsLayout,
+                          glm::uvec3(dims));
     return out;
 }
 

@@ -63,8 +63,10 @@ PipelineHandle createComputePipeline(const Context& ctx, VkPipelineLayout layout
 
 void computeIntoImage(const Context& ctx, const Image& target, VkPipeline pipeline,
                       VkPipelineLayout layout, VkDescriptorSet set, const void* push,
-                      uint32_t pushBytes, glm::uvec3 groupSize) {
-    const VkExtent3D e = target.extent;
+                      uint32_t pushBytes, glm::uvec3 groupSize, VkImageLayout finalLayout,
+                      std::optional<glm::uvec3> domain) {
+    const glm::uvec3 e =
+        domain.value_or(glm::uvec3(target.extent.width, target.extent.height, target.extent.depth));
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         transition(cmd, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                    VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
@@ -73,14 +75,14 @@ void computeIntoImage(const Context& ctx, const Image& target, VkPipeline pipeli
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0,
                                 nullptr);
         vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
-        vkCmdDispatch(cmd, (e.width + groupSize.x - 1) / groupSize.x,
-                      (e.height + groupSize.y - 1) / groupSize.y,
-                      (e.depth + groupSize.z - 1) / groupSize.z);
-        transition(cmd, target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+        const glm::uvec3 groups = (e + groupSize - 1u) / groupSize;
+        vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
+        transition(cmd, target, VK_IMAGE_LAYOUT_GENERAL, finalLayout,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+                   VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                       VK_ACCESS_2_TRANSFER_READ_BIT);
     });
 }
 

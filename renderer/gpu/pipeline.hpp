@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -53,13 +54,15 @@ struct GraphicsPipelineParts {
 PipelineHandle createGraphicsPipeline(const Context& ctx, VkPipelineLayout layout,
                                       const GraphicsPipelineParts& parts);
 
-/// Runs a compute pipeline that writes every texel of `target` (a storage
-/// image bound in `set`), in groups of `groupSize`, then leaves `target` in
-/// SHADER_READ_ONLY_OPTIMAL for fragment shaders, compute shaders and copies.
-/// Blocks until done.
+/// Runs a compute pipeline that writes `target` (a storage image bound in
+/// `set`), in groups of `groupSize` over `domain` (by default the image's
+/// extent), then leaves `target` in `finalLayout` for fragment shaders,
+/// compute shaders and copies. Blocks until done.
 void computeIntoImage(const Context& ctx, const Image& target, VkPipeline pipeline,
                       VkPipelineLayout layout, VkDescriptorSet set, const void* push,
-                      uint32_t pushBytes, glm::uvec3 groupSize);
+                      uint32_t pushBytes, glm::uvec3 groupSize,
+                      VkImageLayout finalLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                      std::optional<glm::uvec3> domain = std::nullopt);
 
 /// A pool sized for `sets` sets of the given descriptor counts, and one set from it.
 struct DescriptorSet {

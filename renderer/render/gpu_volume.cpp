@@ -28,7 +28,8 @@ GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& bake
     const glm::dvec3 lo = worldLo.value_or(-0.5 * volume.extent());
     gv.box = Box{lo, lo + volume.extent()};
     gv.values = bake::uploadVolume(ctx, volume, window);
-    gv.gradients = baker.bake(gv.values, volume.spacing);
+    gv.gradientLayout = bake::gradientLayoutFor(ctx, volume.dims);
+    gv.gradients = baker.bake(gv.values, volume.spacing, gv.gradientLayout);
     gv.scan = std::move(scan);
     gv.labels = std::move(labels);
     return gv;

@@ -17,7 +17,8 @@ namespace cutaway::render {
 
 struct GpuVolume {
     gpu::Image values;
-    gpu::Image gradients;
+    gpu::Image gradients; ///< in bake::kGradientsLayout
+    bake::GradientLayout gradientLayout = bake::GradientLayout::Linear;
     glm::ivec3 dims{0};
     glm::dvec3 spacing{1.0};
     bake::ValueWindow window;

@@ -89,7 +89,8 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                    {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
                                    {14, sampled, 1, cs, nullptr},
                                    {15, storage, 1, cs, nullptr},
-                                   {16, storage, 1, cs, nullptr}});
+                                   {16, storage, 1, cs, nullptr},
+                                   {17, storage, 1, cs, nullptr}});
     static_assert(CW_RAY_MAX_OPERATORS == 3, "one binding per slot's blocks: 9, 10, 11");
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(RayPush), cs);
     std::vector<VkDescriptorSetLayout> sets(1 + CW_RAY_MAX_OPERATORS, operatorSetLayout);
@@ -107,7 +108,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                                          {sampled, 5},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 9},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
@@ -115,7 +116,10 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     for (uint32_t i = 0; i < 2; ++i)
         gpu::writeImageDescriptor(m_ctx, set.set, 15 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                                   in.valueImages[i], VK_IMAGE_LAYOUT_GENERAL);
-    gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, in.gradients, ro, m_linear);
+    gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, in.gradients, bake::kGradientsLayout,
+                              m_linear);
+    gpu::writeImageDescriptor(m_ctx, set.set, 17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, in.gradients,
+                              bake::kGradientsLayout);
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, in.transfer, ro, m_linear);
     gpu::writeImageDescriptor(m_ctx, set.set, 4, sampled, in.classes, ro, m_nearest);
     gpu::writeImageDescriptor(m_ctx, set.set, 5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,

@@ -54,7 +54,8 @@ public:
         /// The same as a storage image in the binding of its format (R8, R16),
         /// a stand-in in the other (SliceRenderer::valueImages).
         std::array<VkImageView, 2> valueImages;
-        VkImageView gradients, transfer, classes;
+        VkImageView gradients; ///< in bake::kGradientsLayout, either layout
+        VkImageView transfer, classes;
         /// The meshes' depth (a depth-only view, DEPTH_STENCIL_READ_ONLY_OPTIMAL),
         /// or any 2D float image of 1 (SHADER_READ_ONLY_OPTIMAL) without meshes.
         VkImageView meshDepth;

@@ -34,13 +34,14 @@ SliceConstants::SliceConstants(const SliceVariant& v, std::initializer_list<uint
                static_cast<uint32_t>(v.lights),
                static_cast<uint32_t>(v.alignment),
                static_cast<uint32_t>(v.storageFetch)} { // booleans are 32-bit VkBool32
-    assert(more.size() <= kMost - kFixed - 1);
+    assert(more.size() <= kMore);
     uint32_t at = kFixed;
     for (uint32_t value : more)
         m_values[at++] = value;
-    while (at < kMost - 1)
+    while (at < kCensus)
         m_values[at++] = 0;
-    m_values[kMost - 1] = v.census;
+    m_values[kCensus] = v.census;
+    m_values[kCensus + 1] = v.brickedGradients;
     for (uint32_t i = 0; i < kMost; ++i)
         m_entries[i] = {i, i * 4u, 4u};
     m_info = {kMost, m_entries, kMost * 4u, m_values};

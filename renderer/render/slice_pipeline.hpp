@@ -43,6 +43,9 @@ struct SliceVariant {
     /// instead of sampled (sample_common.h's volumeAt; SliceRenderer
     /// decides): 0 sampled, 1 from the R8 binding, 2 from the R16 one.
     int storageFetch = 0;
+    /// The gradients in the bricked layout, loaded and filtered in the shader
+    /// (sample_common.h's gradientAt; GpuVolume::gradientLayout decides).
+    bool brickedGradients = false;
     /// The ray caster's census (SliceRenderer::setCensus): counts of samples
     /// per pixel instead of colour.
     bool census = false;
@@ -52,8 +55,9 @@ struct SliceVariant {
 /// The specialization constants of `variant` (constant_id 0..5 of
 /// shaders/glsl/sample_common.h), for the slicing and ray-casting pipelines,
 /// up to three `more` (constant_id 6, 7, 8: the ray caster's operators; 0
-/// where not given) and the census (constant_id 9, ray_march.h). A shader
-/// that does not declare an id ignores its entry.
+/// where not given), the census (constant_id 9, ray_march.h) and the bricked
+/// gradients (constant_id 10, sample_common.h). A shader that does not
+/// declare an id ignores its entry.
 class SliceConstants {
 public:
     explicit SliceConstants(const SliceVariant& variant, std::initializer_list<uint32_t> more = {});
@@ -62,8 +66,10 @@ public:
     const VkSpecializationInfo* info() const { return &m_info; }
 
 private:
-    static constexpr uint32_t kFixed = 6; ///< constant_id 0..5, from the variant
-    static constexpr uint32_t kMost = kFixed + 4;
+    static constexpr uint32_t kFixed = 6;               ///< constant_id 0..5, from the variant
+    static constexpr uint32_t kMore = 3;                ///< constant_id 6..8, from `more`
+    static constexpr uint32_t kCensus = kFixed + kMore; ///< constant_id 9
+    static constexpr uint32_t kMost = kCensus + 2;      ///< and 10, the bricked gradients
     uint32_t m_values[kMost];
     VkSpecializationMapEntry m_entries[kMost];
     VkSpecializationInfo m_info;

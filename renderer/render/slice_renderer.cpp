@@ -96,7 +96,8 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
               {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, frag, nullptr},
               {15, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr},
-              {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr}});
+              {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr},
+              {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr}});
     setStorageFetch(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
     const bool storage = ctx.formats().storageValues;
     const VkFormat standIn[2] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
@@ -428,7 +429,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                    {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4},
-                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}});
+                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                m_uniforms.buffer.get(), sizeof(uniforms));
     const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -439,8 +440,10 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     for (uint32_t i = 0; i < 2; ++i)
         gpu::writeImageDescriptor(m_ctx, set.set, 15 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                                   valueViews[i], VK_IMAGE_LAYOUT_GENERAL);
-    gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, volume.gradients.view.get(), ro,
-                              m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, 2, sampled, volume.gradients.view.get(),
+                              bake::kGradientsLayout, m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, 17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              volume.gradients.view.get(), bake::kGradientsLayout);
     gpu::writeImageDescriptor(m_ctx, set.set, 3, sampled, transfer.view.get(), ro, m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 4, sampled, m_classes.view.get(), ro,
                               m_nearest.get());
@@ -464,6 +467,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     if (m_storageFetch) variant.storageFetch = volume.values.format == VK_FORMAT_R8_UNORM ? 1 : 2;
+    variant.brickedGradients = volume.gradientLayout == bake::GradientLayout::Bricked;
     if (raycast) {
         variant.census = m_census;
         Image image = renderRaycast(cam, volume, transfer, variant, margin, reachMm, set.set);

@@ -268,8 +268,8 @@ vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D feature, in
 
     // One gradient fetch and one feature gradient for both cases below: on
     // SIMD CPUs both sides of a branch run, so a call in each would cost twice.
-    vec4 g = featureGradient(op, feature, mode, textureLod(gradientTex, s.middle.tc, 0.0),
-                             s.middle.feature, s.middle.tc, !masked, breakWeight(op, s.middle));
+    vec4 g = featureGradient(op, feature, mode, gradientAt(s.middle.tc), s.middle.feature,
+                             s.middle.tc, !masked, breakWeight(op, s.middle));
     if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
         vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
         return shade(c, n, toEye);

@@ -205,7 +205,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         if (cwCensus) census.y += 1.0;
         vec4 c = classifySlab(front, cwPreintegrated ? next : front, m.obliquity, classLayer(tc));
         vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
-        c = shade(c, textureLod(gradientTex, shadeAt, 0.0), m.toEye);
+        c = shade(c, gradientAt(shadeAt), m.toEye);
         composite(c, CW_ID_BACKGROUND, sum, id);
         if (sum.a >= CW_OPAQUE_ALPHA) break;
         tc += tcStep;

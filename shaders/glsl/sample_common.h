@@ -19,10 +19,15 @@ layout(constant_id = 4) const int cwAlignment = 0; // operator proxies: CW_ALIGN
 // (docs/performance.md, "Where a frame goes in lavapipe's code"). 0: sampled;
 // 1: the R8 storage image volumeImage8; 2: the R16 one, volumeImage16.
 layout(constant_id = 5) const int cwStorageFetch = 0;
+// The gradients in the bricked layout (bake::GradientLayout::Bricked, CPU
+// devices), read as the storage image gradientImage and filtered here
+// (gradientAt); else sampled from gradientTex.
+layout(constant_id = 10) const bool cwBrickedGradients = false;
 #define CW_SHADING_ON(u) cwShading
 #define CW_LIGHT_COUNT(u) cwLightCount
 
 #include "shared/frame.h"
+#include "shared/gradient.h"
 #include "shared/shading.h"
 
 layout(std140, set = 0, binding = 0) uniform Frame {
@@ -39,6 +44,8 @@ layout(set = 0, binding = 4) uniform usampler3D classTex;
 // cwStorageFetch); a 1^3 stand-in in the binding of the other format.
 layout(set = 0, binding = 15, r8) uniform readonly image3D volumeImage8;
 layout(set = 0, binding = 16, r16) uniform readonly image3D volumeImage16;
+// The gradients again, as a storage image (see cwBrickedGradients).
+layout(set = 0, binding = 17, rgba8_snorm) uniform readonly image3D gradientImage;
 
 // The operator-id codes of the proxy a pixel's first visible sample came
 // from: 0 nothing visible, 2 the untouched volume, 3 + i operator i. A
@@ -56,24 +63,61 @@ float valueTexel(ivec3 p) {
     return cwStorageFetch == 1 ? imageLoad(volumeImage8, p).r : imageLoad(volumeImage16, p).r;
 }
 
+// The texels a trilinear, clamped-to-edge sample at texture coordinate tc of
+// a grid of `dims` weighs (lo and hi corners), and its weights toward hi.
+struct Trilinear {
+    ivec3 lo, hi;
+    vec3 f;
+};
+
+Trilinear trilinearAt(vec3 tc, ivec3 dims) {
+    Trilinear t;
+    vec3 pos = clamp(tc * vec3(dims) - 0.5, vec3(0.0), vec3(dims - 1));
+    t.lo = ivec3(pos); // pos >= 0: truncation is floor
+    t.hi = min(t.lo + 1, dims - 1);
+    t.f = pos - vec3(t.lo);
+    return t;
+}
+
 // The volume's normalized value at texture coordinate tc: trilinear, clamped
 // to the edge, as textureLod(volumeTex, tc, 0.0).r samples it. With
 // cwStorageFetch the eight texels are loaded and weighted here, in full float
 // precision (lavapipe filters 8-bit textures with 8-bit weights).
 float volumeAt(vec3 tc) {
     if (cwStorageFetch == 0) return textureLod(volumeTex, tc, 0.0).r;
-    ivec3 dims = cwStorageFetch == 1 ? imageSize(volumeImage8) : imageSize(volumeImage16);
-    vec3 pos = clamp(tc * vec3(dims) - 0.5, vec3(0.0), vec3(dims - 1));
-    ivec3 lo = ivec3(pos); // pos >= 0: truncation is floor
-    ivec3 hi = min(lo + 1, dims - 1);
-    vec3 f = pos - vec3(lo);
+    Trilinear t =
+        trilinearAt(tc, cwStorageFetch == 1 ? imageSize(volumeImage8) : imageSize(volumeImage16));
+    ivec3 lo = t.lo, hi = t.hi;
     vec4 near = vec4(valueTexel(lo), valueTexel(ivec3(hi.x, lo.yz)),
                      valueTexel(ivec3(lo.x, hi.y, lo.z)), valueTexel(ivec3(hi.xy, lo.z)));
     vec4 far = vec4(valueTexel(ivec3(lo.xy, hi.z)), valueTexel(ivec3(hi.x, lo.y, hi.z)),
                     valueTexel(ivec3(lo.x, hi.yz)), valueTexel(hi));
-    vec4 z = mix(near, far, f.z);
-    vec2 y = mix(z.xy, z.zw, f.y);
-    return mix(y.x, y.y, f.x);
+    vec4 z = mix(near, far, t.f.z);
+    vec2 y = mix(z.xy, z.zw, t.f.y);
+    return mix(y.x, y.y, t.f.x);
+}
+
+vec4 gradientTexel(ivec3 voxel) {
+    return imageLoad(gradientImage, gradientBrickTexel(voxel));
+}
+
+// The baked gradient at texture coordinate tc (shared/gradient.h), filtered
+// as volumeAt filters the values. Bricked, its eight texels are loaded and
+// weighted here: on lavapipe a sampled fetch is a call that gathers them
+// from the grid's rows and slices, about 4 cache lines a sample, where the
+// bricked texels share about 3, and the next samples' mostly the same
+// (docs/performance.md, "Gradients in bricks").
+vec4 gradientAt(vec3 tc) {
+    if (!cwBrickedGradients) return textureLod(gradientTex, tc, 0.0);
+    Trilinear t = trilinearAt(tc, textureSize(volumeTex, 0)); // the grid, not the bricks
+    ivec3 lo = t.lo, hi = t.hi;
+    vec4 x00 = mix(gradientTexel(lo), gradientTexel(ivec3(hi.x, lo.yz)), t.f.x);
+    vec4 x10 =
+        mix(gradientTexel(ivec3(lo.x, hi.y, lo.z)), gradientTexel(ivec3(hi.xy, lo.z)), t.f.x);
+    vec4 x01 =
+        mix(gradientTexel(ivec3(lo.xy, hi.z)), gradientTexel(ivec3(hi.x, lo.y, hi.z)), t.f.x);
+    vec4 x11 = mix(gradientTexel(ivec3(lo.x, hi.yz)), gradientTexel(hi), t.f.x);
+    return mix(mix(x00, x10, t.f.y), mix(x01, x11, t.f.y), t.f.z);
 }
 
 vec3 toEyeFrom(vec3 world) {
@@ -122,7 +166,7 @@ vec4 shade(vec4 sampleColor, vec4 gradient, vec3 toEye) {
 vec4 backgroundSlab(float front, float back, vec3 tc, vec3 shadeAt, vec3 toEye, float obliquity) {
     vec4 c = classifySlab(front, back, obliquity, classLayer(tc));
     if (c.a <= 0.0) return vec4(0.0);
-    return shade(c, textureLod(gradientTex, shadeAt, 0.0), toEye);
+    return shade(c, gradientAt(shadeAt), toEye);
 }
 
 #endif

@@ -19,8 +19,24 @@ struct GradientParams {
     ivec3 dims;           // voxels
     float magnitudeScale; // smallest spacing (mm) * 2: turns 1/mm into "per half-window per voxel"
     vec3 halfInvSpacing;  // 1 / (2 * spacing), 1/mm
-    float pad0;
+    int bricked;          // 1: texels in the bricked layout (gradientBrickTexel), 0: the grid's
 };
+
+// The bricked layout, for devices whose shaders load and filter the texels
+// themselves (CPU devices: bake::gradientLayoutFor). Each run of 16 texels
+// (64 bytes, one cache line) holds a 4x4 patch of the grid in x and y, the
+// patches of a band of 4 rows follow each other along x, and the bands of 4
+// slices in z follow each other: a trilinear sample's 8 texels lie in about
+// 3 cache lines instead of 4 or more, and a ray's next samples mostly in the
+// same ones. The texel of voxel v (v >= 0), in an image of
+// gradientBrickExtent(dims).
+CW_FUNC ivec3 gradientBrickTexel(ivec3 v) {
+    return ivec3((v.x & 3) + 4 * (v.y & 3) + 16 * (v.x >> 2), (v.z & 3) + 4 * (v.y >> 2), v.z >> 2);
+}
+
+CW_FUNC ivec3 gradientBrickExtent(ivec3 dims) {
+    return ivec3(16 * ((dims.x + 3) / 4), 4 * ((dims.y + 3) / 4), (dims.z + 3) / 4);
+}
 
 // Weight of a neighbour at transverse offsets (a, b) in {-1, 0, 1}.
 CW_FUNC float sobelWeight(int a, int b) {

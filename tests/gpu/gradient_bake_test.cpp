@@ -25,6 +25,31 @@ Volume randomVolume(glm::ivec3 dims, glm::dvec3 spacing, unsigned seed) {
     return v;
 }
 
+// The baked texels (4 bytes each) in the grid's order, whichever the layout.
+std::vector<int8_t> gridTexels(const gpu::Context& ctx, const gpu::Image& gradients,
+                               glm::ivec3 dims, bake::GradientLayout layout) {
+    const std::vector<std::byte> bytes =
+        gpu::downloadImage(ctx, gradients, bake::kGradientsLayout, 4);
+    const auto* texels = reinterpret_cast<const int8_t*>(bytes.data());
+    const VkExtent3D e = gradients.extent;
+    std::vector<int8_t> grid(4 * std::size_t(dims.x) * dims.y * dims.z);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                const glm::ivec3 v(x, y, z);
+                const glm::ivec3 t =
+                    layout == bake::GradientLayout::Bricked ? shader::gradientBrickTexel(v) : v;
+                const std::size_t from =
+                    std::size_t(t.x) + e.width * (t.y + std::size_t(e.height) * t.z);
+                const std::size_t to = std::size_t(x) + dims.x * (y + std::size_t(dims.y) * z);
+                std::copy_n(texels + 4 * from, 4, grid.begin() + std::ptrdiff_t(4 * to));
+            }
+    return grid;
+}
+
+constexpr bake::GradientLayout kLayouts[] = {bake::GradientLayout::Linear,
+                                             bake::GradientLayout::Bricked};
+
 } // namespace
 
 TEST_F(GpuTest, GradientBakeMatchesCpuReference) {
@@ -36,20 +61,47 @@ TEST_F(GpuTest, GradientBakeMatchesCpuReference) {
 
     bake::GradientBaker baker(ctx());
     gpu::Image values = bake::uploadVolume(ctx(), volume, window);
-    gpu::Image gradients = baker.bake(values, spacing);
-    std::vector<std::byte> bytes =
-        gpu::downloadImage(ctx(), gradients, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4);
-    const auto* texels = reinterpret_cast<const int8_t*>(bytes.data());
-
     const std::vector<glm::vec4> expected = cpuGradients(volume, window);
-    float maxErr = 0.0f;
-    for (std::size_t i = 0; i < volume.voxelCount(); ++i)
-        for (int c = 0; c < 4; ++c) {
-            const float got = std::max(texels[4 * i + std::size_t(c)] / 127.0f, -1.0f);
-            maxErr = std::max(maxErr, std::abs(got - expected[i][c]));
-        }
-    // SNORM8 quantization is 1/254 at best; allow one step of rounding difference.
-    EXPECT_LE(maxErr, 1.0f / 127.0f + 1e-6f);
+    for (const bake::GradientLayout layout : kLayouts) {
+        SCOPED_TRACE(layout == bake::GradientLayout::Bricked ? "bricked" : "linear");
+        const std::vector<int8_t> texels =
+            gridTexels(ctx(), baker.bake(values, spacing, layout), dims, layout);
+        float maxErr = 0.0f;
+        for (std::size_t i = 0; i < volume.voxelCount(); ++i)
+            for (int c = 0; c < 4; ++c) {
+                const float got = std::max(texels[4 * i + std::size_t(c)] / 127.0f, -1.0f);
+                maxErr = std::max(maxErr, std::abs(got - expected[i][c]));
+            }
+        // SNORM8 quantization is 1/254 at best; allow one step of rounding difference.
+        EXPECT_LE(maxErr, 1.0f / 127.0f + 1e-6f);
+    }
+}
+
+// Both layouts hold the same texels, to the bit, on a grid whose sides are
+// not multiples of the bricks' 4 (the bake's runs and columns cover the grid,
+// not the larger bricked image).
+TEST_F(GpuTest, BrickedGradientsHoldTheGridsTexels) {
+    const glm::ivec3 dims(61, 23, 18);
+    const Volume volume = randomVolume(dims, glm::dvec3(1.0, 0.8, 1.5), 5);
+    const ValueRange range = valueRange(volume);
+    bake::GradientBaker baker(ctx());
+    const gpu::Image values = bake::uploadVolume(ctx(), volume, {range.min, range.max});
+    const gpu::Image bricked = baker.bake(values, volume.spacing, bake::GradientLayout::Bricked);
+    const glm::ivec3 extent = shader::gradientBrickExtent(dims);
+    EXPECT_EQ(glm::ivec3(bricked.extent.width, bricked.extent.height, bricked.extent.depth),
+              extent);
+    const std::vector<int8_t> a =
+        gridTexels(ctx(), baker.bake(values, volume.spacing, bake::GradientLayout::Linear), dims,
+                   bake::GradientLayout::Linear);
+    const std::vector<int8_t> b = gridTexels(ctx(), bricked, dims, bake::GradientLayout::Bricked);
+    ASSERT_EQ(a.size(), b.size());
+    std::size_t differ = 0, nonZero = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        differ += a[i] != b[i];
+        nonZero += a[i] != 0;
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(nonZero, a.size() / 2) << "the gradients must not all vanish";
 }
 
 // Mirroring the volume in x mirrors its baked gradient to the bit: x
@@ -68,14 +120,14 @@ TEST_F(GpuTest, MirroredVolumeBakesTheMirroredGradientExactly) {
                 m[volume.index(x, y, z)] = v[volume.index(dims.x - 1 - x, y, z)];
     const ValueRange range = valueRange(volume);
     bake::GradientBaker baker(ctx());
+    const bake::GradientLayout layout = bake::gradientLayoutFor(ctx(), dims);
     const auto bakeOf = [&](const Volume& vol) {
         const gpu::Image values = bake::uploadVolume(ctx(), vol, {range.min, range.max});
-        return gpu::downloadImage(ctx(), baker.bake(values, vol.spacing),
-                                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4);
+        return gridTexels(ctx(), baker.bake(values, vol.spacing, layout), dims, layout);
     };
-    const std::vector<std::byte> a = bakeOf(volume), b = bakeOf(mirrored);
-    const auto* ga = reinterpret_cast<const int8_t*>(a.data());
-    const auto* gb = reinterpret_cast<const int8_t*>(b.data());
+    const std::vector<int8_t> a = bakeOf(volume), b = bakeOf(mirrored);
+    const int8_t* ga = a.data();
+    const int8_t* gb = b.data();
     int nonZero = 0;
     for (int z = 0; z < dims.z; ++z)
         for (int y = 0; y < dims.y; ++y)
@@ -88,6 +140,44 @@ TEST_F(GpuTest, MirroredVolumeBakesTheMirroredGradientExactly) {
                     ASSERT_EQ(gb[j + c], ga[i + c]) << x << " " << y << " " << z << " c " << c;
             }
     EXPECT_GT(nonZero, dims.x * dims.y * dims.z / 2) << "x gradients must not all vanish";
+}
+
+// The bricked layout puts each voxel of a grid in a texel of its own inside
+// the extent, and each 4x4 patch in x and y in 16 consecutive texels of a row
+// (one cache line of RGBA8), the patches of a band of rows one after another.
+TEST(GradientBricks, EachVoxelHasItsOwnTexelAndPatchesShareARow) {
+    const glm::ivec3 dims(13, 10, 7);
+    const glm::ivec3 extent = shader::gradientBrickExtent(dims);
+    EXPECT_EQ(extent, glm::ivec3(64, 12, 2));
+    std::vector<int> owner(std::size_t(extent.x) * extent.y * extent.z, -1);
+    for (int z = 0; z < dims.z; ++z)
+        for (int y = 0; y < dims.y; ++y)
+            for (int x = 0; x < dims.x; ++x) {
+                const glm::ivec3 t = shader::gradientBrickTexel(glm::ivec3(x, y, z));
+                ASSERT_TRUE(glm::all(glm::greaterThanEqual(t, glm::ivec3(0))) &&
+                            glm::all(glm::lessThan(t, extent)))
+                    << x << " " << y << " " << z;
+                int& o = owner[std::size_t(t.x) + extent.x * (t.y + std::size_t(extent.y) * t.z)];
+                ASSERT_EQ(o, -1) << "two voxels in one texel at " << x << " " << y << " " << z;
+                o = x + dims.x * (y + dims.y * z);
+                // The patch's 16 texels: the same row, 16 apart per patch.
+                const glm::ivec3 corner = shader::gradientBrickTexel(glm::ivec3(x & ~3, y & ~3, z));
+                EXPECT_EQ(t.y, corner.y);
+                EXPECT_EQ(t.z, corner.z);
+                EXPECT_EQ(corner.x % 16, 0);
+                EXPECT_EQ(t.x - corner.x, (x & 3) + 4 * (y & 3));
+                EXPECT_EQ(corner.x / 16, x / 4);
+            }
+}
+
+// Bricked on CPU devices up to the widest grid whose bricked image (4x as
+// wide) fits the device's 3D images, linear beyond it and on GPUs.
+TEST_F(GpuTest, GradientsAreBrickedOnCpuDevicesWhereTheyFit) {
+    const bool cpu = ctx().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    const int widest = static_cast<int>(ctx().properties().limits.maxImageDimension3D) / 4;
+    EXPECT_EQ(bake::gradientLayoutFor(ctx(), {widest, 9, 5}),
+              cpu ? bake::GradientLayout::Bricked : bake::GradientLayout::Linear);
+    EXPECT_EQ(bake::gradientLayoutFor(ctx(), {widest + 1, 9, 5}), bake::GradientLayout::Linear);
 }
 
 TEST(GradientEncoding, PointsTowardIncreasingValueAndHonoursSpacing) {
