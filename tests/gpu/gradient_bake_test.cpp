@@ -125,9 +125,7 @@ TEST_F(GpuTest, MirroredVolumeBakesTheMirroredGradientExactly) {
         const gpu::Image values = bake::uploadVolume(ctx(), vol, {range.min, range.max});
         return gridTexels(ctx(), baker.bake(values, vol.spacing, layout), dims, layout);
     };
-    const std::vector<int8_t> a = bakeOf(volume), b = bakeOf(mirrored);
-    const int8_t* ga = a.data();
-    const int8_t* gb = b.data();
+    const std::vector<int8_t> ga = bakeOf(volume), gb = bakeOf(mirrored);
     int nonZero = 0;
     for (int z = 0; z < dims.z; ++z)
         for (int y = 0; y < dims.y; ++y)

@@ -1,12 +1,12 @@
 // The volume's values (and below, the gradients) read as a storage image and
 // filtered in the shader (sample_common.h's volumeAt, on by default on CPU
-// devices) against the
-// value texture sampled by the device: the same trilinear, clamped-to-edge
-// filter, so the images agree but for the filter's arithmetic. lavapipe
-// weights 8-bit textures with 8-bit fractions where the shader weighs in
-// float, so an R8 volume's images differ a little (and must: the same image
-// to the bit would mean the storage path never ran); an R16 volume's agree
-// closely. Both methods, with and without an operator, both formats.
+// devices) against the value texture sampled by the device: the same
+// trilinear, clamped-to-edge filter, so the images agree but for the
+// filter's arithmetic. lavapipe weights 8-bit textures with 8-bit fractions
+// where the shader weighs in float, so an R8 volume's images differ a little
+// (and must: the same image to the bit would mean the storage path never
+// ran); an R16 volume's agree closely. Both methods, with and without an
+// operator, both formats.
 #include "bake/gradient_bake.hpp"
 #include "gpu_fixture.hpp"
 #include "job/render_job.hpp"
