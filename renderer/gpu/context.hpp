@@ -55,6 +55,8 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return m_properties; }
     const DeviceFormats& formats() const { return m_formats; }
     std::string deviceName() const { return m_properties.deviceName; }
+    /// Compute shaders can use subgroup ballots (GL_KHR_shader_subgroup_ballot).
+    bool computeBallots() const { return m_computeBallots; }
     bool validationEnabled() const { return m_validation; }
 
     /// Index of a memory type allowed by `typeBits` that has `flags`; throws if none.
@@ -91,6 +93,7 @@ private:
     VkDebugUtilsMessengerEXT m_messenger = VK_NULL_HANDLE;
     VkPhysicalDevice m_physicalDevice = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties m_properties{};
+    bool m_computeBallots = false;
     VkPhysicalDeviceMemoryProperties m_memory{};
     MemoryLimits m_memoryLimits;
     mutable std::atomic<VkDeviceSize> m_memoryInUse{0};

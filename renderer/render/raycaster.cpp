@@ -1,7 +1,9 @@
 #include "render/raycaster.hpp"
 
 #include "raycast_comp.spv.h"
+#include "raycast_lanes_comp.spv.h"
 #include "raycast_operators_comp.spv.h"
+#include "raycast_operators_lanes_comp.spv.h"
 #include "render/ray_cells.hpp"
 #include "shared/tile_order.h"
 
@@ -153,7 +155,10 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant, const std::vector
     if (found != m_pipelines.end()) return found->second.get();
     gpu::PipelineHandle pipeline;
     if (alignments.empty()) {
-        auto module = gpu::createShaderModule(m_ctx, raycast_comp_spv, sizeof(raycast_comp_spv));
+        auto module = variant.yieldLanes ? gpu::createShaderModule(m_ctx, raycast_lanes_comp_spv,
+                                                                   sizeof(raycast_lanes_comp_spv))
+                                         : gpu::createShaderModule(m_ctx, raycast_comp_spv,
+                                                                   sizeof(raycast_comp_spv));
         const SliceConstants constants(variant);
         pipeline =
             gpu::createComputePipeline(m_ctx, m_layout.get(), module.get(), constants.info());
@@ -167,8 +172,11 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant, const std::vector
         };
         const SliceConstants constants(first,
                                        {static_cast<uint32_t>(alignments.size()), at(1), at(2)});
-        auto module = gpu::createShaderModule(m_ctx, raycast_operators_comp_spv,
-                                              sizeof(raycast_operators_comp_spv));
+        auto module = variant.yieldLanes
+                          ? gpu::createShaderModule(m_ctx, raycast_operators_lanes_comp_spv,
+                                                    sizeof(raycast_operators_lanes_comp_spv))
+                          : gpu::createShaderModule(m_ctx, raycast_operators_comp_spv,
+                                                    sizeof(raycast_operators_comp_spv));
         pipeline = gpu::createComputePipeline(m_ctx, m_operatorLayout.get(), module.get(),
                                               constants.info());
     }

@@ -46,6 +46,11 @@ struct SliceVariant {
     /// The gradients in the bricked layout, loaded and filtered in the shader
     /// (sample_common.h's gradientAt; GpuVolume::gradientLayout decides).
     bool brickedGradients = false;
+    /// The ray caster's lanes that step over transparent samples stop for a
+    /// pass of shading when a quarter of the subgroup waits (ray_march.h's
+    /// CW_YIELD_LANES: its shaders with subgroup ballots; SliceRenderer
+    /// decides). Slicing ignores it.
+    bool yieldLanes = false;
     /// The ray caster's census (SliceRenderer::setCensus): counts of samples
     /// per pixel instead of colour.
     bool census = false;

@@ -99,6 +99,7 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
               {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr},
               {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr}});
     setStorageFetch(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    setYieldLanes(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
     const bool storage = ctx.formats().storageValues;
     const VkFormat standIn[2] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
                                  storage ? VK_FORMAT_R16_UNORM : VK_FORMAT_R8G8B8A8_UNORM};
@@ -470,6 +471,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.brickedGradients = volume.gradientLayout == bake::GradientLayout::Bricked;
     if (raycast) {
         variant.census = m_census;
+        variant.yieldLanes = m_yieldLanes;
         Image image = renderRaycast(cam, volume, transfer, variant, margin, reachMm, set.set);
         if (!m_census) compositeUnder(image, scene.render.background);
         return image;

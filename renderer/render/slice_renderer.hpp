@@ -60,6 +60,14 @@ public:
     /// on by default on a CPU device (lavapipe), where that is the faster
     /// way, off on GPUs; only where the device can (DeviceFormats::storageValues).
     void setStorageFetch(bool on) { m_storageFetch = on && m_ctx.formats().storageValues; }
+    /// Whether the ray caster's lanes stepping over transparent samples stop
+    /// for a pass of shading when a quarter of their subgroup waits at a
+    /// visible slab (shaders/glsl/ray_march.h, CW_YIELD_LANES): on by default
+    /// on a CPU device, which runs a subgroup's lanes in lock-step and pays
+    /// for every pass; off on GPUs, where it is not measured; only where
+    /// compute shaders have subgroup ballots. The same image either way.
+    void setYieldLanes(bool on) { m_yieldLanes = on && m_ctx.computeBallots(); }
+    bool yieldLanes() const { return m_yieldLanes; }
     /// The ray caster's census, for performance work (bench --census): on,
     /// a ray-cast frame returns per pixel, instead of colour, how many
     /// samples its ray took of each kind (shaders/glsl/ray_march.h's `census`: r the
@@ -146,6 +154,7 @@ private:
     std::vector<Regions> m_regions; ///< per operator
     bool m_operatorSkipping = true;
     bool m_storageFetch = false;
+    bool m_yieldLanes = false;
     bool m_census = false;
     /// 1^3 stand-ins for the value storage images (bindings 15, R8, and 16,
     /// R16): the binding of the other format, or both where the values are

@@ -9,7 +9,10 @@
 // cells, and takes the gradient and lighting only at visible slabs: lavapipe
 // runs 8 rays in lock-step and pays for both sides of a branch, but a loop
 // ends when all its lanes leave it, so transparent runs are inner loops of
-// their own.
+// their own. Built with CW_YIELD_LANES (raycast_lanes.comp.glsl and
+// raycast_operators_lanes.comp.glsl, used on CPU devices), the lanes still
+// in such a loop stop for a pass of shading once a quarter of their
+// subgroup waits at a visible slab, instead of all waiting for the last.
 //
 // raycast.comp.glsl renders the untouched volume; raycast_operators.comp.glsl
 // defines CW_RAY_OPERATORS: up to CW_RAY_MAX_OPERATORS operators, each one's
@@ -160,6 +163,21 @@ bool mayShow(float front, float back) {
     return firstVisibleFrom[first] < end;
 }
 
+#ifdef CW_YIELD_LANES
+// How many lanes of the subgroup run this code.
+uint lanesHere() {
+    return subgroupBallotBitCount(subgroupBallot(true));
+}
+
+// Whether the lanes still stepping over transparent samples should stop
+// for a pass of shading: when a quarter of the `live` lanes that began
+// stepping wait at a visible slab (or are done). Their rays are unchanged:
+// the stopped lanes go on stepping after the pass.
+bool yieldToShading(uint live) {
+    return lanesHere() * 4u <= live * 3u;
+}
+#endif
+
 // Samples k0..k1 of the untouched volume, composited into `sum`.
 void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) {
     float k = k0;
@@ -173,8 +191,12 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         // Transparent slabs cost a volume fetch and a visibility test
         // (mayShow), empty cells a cell lookup; the whole table texel, the
         // gradient and the lighting run once every lane is at a visible slab
-        // or done.
+        // or done (with CW_YIELD_LANES: once a quarter of them is).
         float next = 0.0;
+        bool visible = false;
+#ifdef CW_YIELD_LANES
+        uint live = lanesHere();
+#endif
         while (k <= k1) {
             // Jumps over empty cells take passes of their own, repeated
             // while some lane still jumps: lavapipe runs a loop's whole body
@@ -196,12 +218,19 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
                 continue;
             }
             next = value;
-            if (mayShow(front, cwPreintegrated ? next : front)) break;
+            if (mayShow(front, cwPreintegrated ? next : front)) {
+                visible = true;
+                break;
+            }
             tc += tcStep;
             front = next;
             k += 1.0;
+#ifdef CW_YIELD_LANES
+            if (yieldToShading(live)) break;
+#endif
         }
         if (k > k1) break;
+        if (!visible) continue;
         if (cwCensus) census.y += 1.0;
         vec4 c = classifySlab(front, cwPreintegrated ? next : front, m.obliquity, classLayer(tc));
         vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
@@ -260,6 +289,10 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
         // visibility test (mayShow).
         Resolved next;
         Slab s;
+        bool visible = false;
+#ifdef CW_YIELD_LANES
+        uint live = lanesHere();
+#endif
         // One resolve per pass for every lane (of the front after a jump, or
         // of the next back), so lanes in lock-step keep together.
         while (k <= k1) {
@@ -281,11 +314,18 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
                 continue;
             }
             s = operatorSlab(mode, front, cwPreintegrated ? next : front);
-            if (!s.empty && mayShow(s.frontValue, s.backValue)) break;
+            if (!s.empty && mayShow(s.frontValue, s.backValue)) {
+                visible = true;
+                break;
+            }
             front = next;
             k += 1.0;
+#ifdef CW_YIELD_LANES
+            if (yieldToShading(live)) break;
+#endif
         }
         if (k > k1) break;
+        if (!visible) continue;
         bool moved;
         if (cwCensus) census.w += 1.0;
         vec4 c = shadeOperatorSlab(op, map, feature, mode, s, pointAt(m, k), m.toEye, m.obliquity,

@@ -1,0 +1,65 @@
+// The ray caster's lanes yielding to shading (shaders/glsl/ray_march.h,
+// CW_YIELD_LANES; on by default on CPU devices): lanes still stepping over
+// transparent samples stop for a pass of shading once a quarter of their
+// subgroup waits at a visible slab, and go on after it. That changes the
+// order of a subgroup's passes, not any ray's samples, so the image is the
+// same to the bit as without it: with and without operators, whose runs
+// yield too. A lane that shaded a slab it had not found visible, that lost
+// the slab it waited at, or that skipped a sample on resuming, changes it.
+#include "bake/gradient_bake.hpp"
+#include "gpu_fixture.hpp"
+#include "job/render_job.hpp"
+#include "render/gpu_volume.hpp"
+#include "render/slice_renderer.hpp"
+#include "scene/scene.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace cutaway::test {
+namespace {
+
+class YieldLanes : public GpuTest {};
+
+TEST_F(YieldLanes, RendersTheSameImageAsLanesThatWait) {
+    if (!ctx().computeBallots())
+        GTEST_SKIP() << ctx().deviceName() << " has no subgroup ballots in compute shaders";
+    const char* const operators[] = {
+        "[]",
+        R"([{ "type": "peeler", "placement": { "translate": [0, 0, 16], "scale": [50, 50, 30] },
+              "params": { "hinge": -10, "thickness": 12, "angle": 130 },
+              "alignment": {"mode": "surface", "threshold": 30, "depth": 3, "band": 2} }])",
+        R"([{ "type": "retractor", "placement": { "translate": [0, -10, 14], "scale": [30, 40, 30] },
+              "params": { "opening": 14 },
+              "alignment": {"mode": "segment", "labels": ["brain"], "band": 2} }])"};
+    for (const char* ops : operators) {
+        nlohmann::json doc = operatorPhantomDocument();
+        doc["operators"] = nlohmann::json::parse(ops);
+        doc["render"]["method"] = "raycast";
+        const Scene scene = parseScene(doc, "/nonexistent", "test");
+        SCOPED_TRACE(scene.operators.empty() ? "no operator" : scene.operators[0].name);
+        const auto volume = std::make_shared<const Volume>(job::loadSceneVolume(scene));
+        const bake::GradientBaker baker(ctx());
+        const render::GpuVolume gv =
+            render::prepareVolume(ctx(), baker, volume, job::sceneWindow(scene, *volume),
+                                  std::nullopt, job::loadSceneLabels(scene, volume));
+        render::SliceRenderer renderer(ctx());
+        EXPECT_EQ(renderer.yieldLanes(),
+                  ctx().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+        renderer.setYieldLanes(false);
+        const Image waiting = renderer.render(scene, gv);
+        renderer.setYieldLanes(true);
+        ASSERT_TRUE(renderer.yieldLanes());
+        const Image yielding = renderer.render(scene, gv);
+        double coverage = 0.0;
+        for (std::size_t i = 3; i < yielding.rgba.size(); i += 4)
+            coverage += yielding.rgba[i];
+        EXPECT_GT(coverage, 1000.0) << "the head must show";
+        const ImageDiff d = compareImages(waiting, yielding);
+        EXPECT_EQ(d.maxAbs, 0.0f) << "rms " << d.rms;
+        EXPECT_EQ(waiting.operatorIds, yielding.operatorIds);
+    }
+}
+
+} // namespace
+} // namespace cutaway::test
