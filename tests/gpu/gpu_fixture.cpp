@@ -22,6 +22,17 @@ nlohmann::json operatorPhantomDocument() {
         "render": {"size": [96, 96], "background": "transparent"}})");
 }
 
+std::vector<nlohmann::json> phantomOperatorCases() {
+    return {nlohmann::json::array(), nlohmann::json::parse(R"([{ "type": "peeler",
+                  "placement": { "translate": [0, 0, 16], "scale": [50, 50, 30] },
+                  "params": { "hinge": -10, "thickness": 12, "angle": 130 },
+                  "alignment": {"mode": "surface", "threshold": 30, "depth": 3, "band": 2} }])"),
+            nlohmann::json::parse(R"([{ "type": "retractor",
+                  "placement": { "translate": [0, -10, 14], "scale": [30, 40, 30] },
+                  "params": { "opening": 14 },
+                  "alignment": {"mode": "segment", "labels": ["brain"], "band": 2} }])")};
+}
+
 Scene headScene(int phantomSize, int width, int height) {
     Scene s;
     s.volume.phantom = "head";

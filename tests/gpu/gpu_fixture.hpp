@@ -10,6 +10,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace cutaway::test {
 
@@ -75,6 +76,11 @@ Scene headScene(int phantomSize, int width, int height);
 /// function that shows skin, brain and skull translucently, a view from above
 /// and in front, 96x96 over a transparent background: the operator tests'.
 nlohmann::json operatorPhantomDocument();
+
+/// The `operators` arrays that tests of a shader path render on
+/// operatorPhantomDocument: none, a surface-aligned peeler and a
+/// segment-aligned retractor.
+std::vector<nlohmann::json> phantomOperatorCases();
 
 /// Renders a scene to an image (loads its volume, prepares, renders).
 Image renderScene(const gpu::Context& ctx, const Scene& scene);

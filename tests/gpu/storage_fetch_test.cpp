@@ -39,20 +39,12 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
     // narrower window, as R16.
     const std::pair<const char*, VkFormat> windows[] = {{"[0, 255]", VK_FORMAT_R8_UNORM},
                                                         {"[20, 235]", VK_FORMAT_R16_UNORM}};
-    const char* const operators[] = {
-        "[]",
-        R"([{ "type": "peeler", "placement": { "translate": [0, 0, 16], "scale": [50, 50, 30] },
-              "params": { "hinge": -10, "thickness": 12, "angle": 130 },
-              "alignment": {"mode": "surface", "threshold": 30, "depth": 3, "band": 2} }])",
-        R"([{ "type": "retractor", "placement": { "translate": [0, -10, 14], "scale": [30, 40, 30] },
-              "params": { "opening": 14 },
-              "alignment": {"mode": "segment", "labels": ["brain"], "band": 2} }])"};
     for (const auto& [window, format] : windows)
-        for (const char* ops : operators)
+        for (const nlohmann::json& ops : phantomOperatorCases())
             for (const char* method : {"slicing", "raycast"}) {
                 nlohmann::json doc = operatorPhantomDocument();
                 doc["volume"]["window"] = nlohmann::json::parse(window);
-                doc["operators"] = nlohmann::json::parse(ops);
+                doc["operators"] = ops;
                 doc["render"]["method"] = method;
                 const Scene scene = parseScene(doc, "/nonexistent", "test");
                 SCOPED_TRACE(std::string(window) + " " + method + " " +

@@ -24,17 +24,9 @@ class YieldLanes : public GpuTest {};
 TEST_F(YieldLanes, RendersTheSameImageAsLanesThatWait) {
     if (!ctx().computeBallots())
         GTEST_SKIP() << ctx().deviceName() << " has no subgroup ballots in compute shaders";
-    const char* const operators[] = {
-        "[]",
-        R"([{ "type": "peeler", "placement": { "translate": [0, 0, 16], "scale": [50, 50, 30] },
-              "params": { "hinge": -10, "thickness": 12, "angle": 130 },
-              "alignment": {"mode": "surface", "threshold": 30, "depth": 3, "band": 2} }])",
-        R"([{ "type": "retractor", "placement": { "translate": [0, -10, 14], "scale": [30, 40, 30] },
-              "params": { "opening": 14 },
-              "alignment": {"mode": "segment", "labels": ["brain"], "band": 2} }])"};
-    for (const char* ops : operators) {
+    for (const nlohmann::json& ops : phantomOperatorCases()) {
         nlohmann::json doc = operatorPhantomDocument();
-        doc["operators"] = nlohmann::json::parse(ops);
+        doc["operators"] = ops;
         doc["render"]["method"] = "raycast";
         const Scene scene = parseScene(doc, "/nonexistent", "test");
         SCOPED_TRACE(scene.operators.empty() ? "no operator" : scene.operators[0].name);
