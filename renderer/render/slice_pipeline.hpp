@@ -47,7 +47,7 @@ struct SliceVariant {
     /// (sample_common.h's gradientAt; GpuVolume::gradientLayout decides).
     bool brickedGradients = false;
     /// The ray caster's lanes that step over transparent samples stop for a
-    /// pass of shading when a quarter of the subgroup waits (ray_march.h's
+    /// pass of shading as soon as one lane waits (ray_march.h's
     /// CW_YIELD_LANES: its shaders with subgroup ballots; SliceRenderer
     /// decides). Slicing ignores it.
     bool yieldLanes = false;

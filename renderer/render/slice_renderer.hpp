@@ -61,8 +61,8 @@ public:
     /// way, off on GPUs; only where the device can (DeviceFormats::storageValues).
     void setStorageFetch(bool on) { m_storageFetch = on && m_ctx.formats().storageValues; }
     /// Whether the ray caster's lanes stepping over transparent samples stop
-    /// for a pass of shading when a quarter of their subgroup waits at a
-    /// visible slab (shaders/glsl/ray_march.h, CW_YIELD_LANES): on by default
+    /// for a pass of shading as soon as one lane of their subgroup waits at
+    /// a visible slab (shaders/glsl/ray_march.h, CW_YIELD_LANES): on by default
     /// on a CPU device, which runs a subgroup's lanes in lock-step and pays
     /// for every pass; off on GPUs, where it is not measured; only where
     /// compute shaders have subgroup ballots. The same image either way.

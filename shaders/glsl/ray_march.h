@@ -11,7 +11,7 @@
 // ends when all its lanes leave it, so transparent runs are inner loops of
 // their own. Built with CW_YIELD_LANES (raycast_lanes.comp.glsl and
 // raycast_operators_lanes.comp.glsl, used on CPU devices), the lanes still
-// in such a loop stop for a pass of shading once a quarter of their
+// in such a loop stop for a pass of shading as soon as one lane of their
 // subgroup waits at a visible slab, instead of all waiting for the last.
 //
 // raycast.comp.glsl renders the untouched volume; raycast_operators.comp.glsl
@@ -170,11 +170,14 @@ uint lanesHere() {
 }
 
 // Whether the lanes still stepping over transparent samples should stop
-// for a pass of shading: when a quarter of the `live` lanes that began
-// stepping wait at a visible slab (or are done). Their rays are unchanged:
-// the stopped lanes go on stepping after the pass.
-bool yieldToShading(uint live) {
-    return lanesHere() * 4u <= live * 3u;
+// for a pass of shading, at the start of each of their passes: as soon as
+// one of the `live` lanes that began stepping (the most seen in this loop's
+// passes so far) waits at a visible slab or is done. Their rays are
+// unchanged: the stopped lanes go on stepping after the pass.
+bool yieldToShading(inout uint live) {
+    uint here = lanesHere();
+    live = max(live, here);
+    return here < live;
 }
 #endif
 
@@ -191,13 +194,16 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         // Transparent slabs cost a volume fetch and a visibility test
         // (mayShow), empty cells a cell lookup; the whole table texel, the
         // gradient and the lighting run once every lane is at a visible slab
-        // or done (with CW_YIELD_LANES: once a quarter of them is).
+        // or done (with CW_YIELD_LANES: once one of them is).
         float next = 0.0;
         bool visible = false;
 #ifdef CW_YIELD_LANES
-        uint live = lanesHere();
+        uint live = 0u;
 #endif
         while (k <= k1) {
+#ifdef CW_YIELD_LANES
+            if (yieldToShading(live)) break;
+#endif
             // Jumps over empty cells take passes of their own, repeated
             // while some lane still jumps: lavapipe runs a loop's whole body
             // for its 8 lanes on every pass, so a jump in the pass below
@@ -225,9 +231,6 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
             tc += tcStep;
             front = next;
             k += 1.0;
-#ifdef CW_YIELD_LANES
-            if (yieldToShading(live)) break;
-#endif
         }
         if (k > k1) break;
         if (!visible) continue;
@@ -291,11 +294,14 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
         Slab s;
         bool visible = false;
 #ifdef CW_YIELD_LANES
-        uint live = lanesHere();
+        uint live = 0u;
 #endif
         // One resolve per pass for every lane (of the front after a jump, or
         // of the next back), so lanes in lock-step keep together.
         while (k <= k1) {
+#ifdef CW_YIELD_LANES
+            if (yieldToShading(live)) break;
+#endif
             // Jumps over empty blocks in passes of their own (as in
             // backgroundRun): a resolve costs several fetches.
             float skip;
@@ -320,9 +326,6 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
             }
             front = next;
             k += 1.0;
-#ifdef CW_YIELD_LANES
-            if (yieldToShading(live)) break;
-#endif
         }
         if (k > k1) break;
         if (!visible) continue;

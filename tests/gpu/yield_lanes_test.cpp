@@ -1,7 +1,7 @@
 // The ray caster's lanes yielding to shading (shaders/glsl/ray_march.h,
 // CW_YIELD_LANES; on by default on CPU devices): lanes still stepping over
-// transparent samples stop for a pass of shading once a quarter of their
-// subgroup waits at a visible slab, and go on after it. That changes the
+// transparent samples stop for a pass of shading as soon as one lane of
+// their subgroup waits at a visible slab, and go on after it. That changes the
 // order of a subgroup's passes, not any ray's samples, so the image is the
 // same to the bit as without it: with and without operators, whose runs
 // yield too. A lane that shaded a slab it had not found visible, that lost
@@ -48,7 +48,12 @@ TEST_F(YieldLanes, RendersTheSameImageAsLanesThatWait) {
             coverage += yielding.rgba[i];
         EXPECT_GT(coverage, 1000.0) << "the head must show";
         const ImageDiff d = compareImages(waiting, yielding);
-        EXPECT_EQ(d.maxAbs, 0.0f) << "rms " << d.rms;
+        // lavapipe: the same to the bit (measured). A GPU's compiler may
+        // contract the two shaders' arithmetic differently. Lanes that shade
+        // a slab they did not find visible moved the image by 0.03-0.08 (the
+        // untouched volume's runs) and 0.28-0.85 (an operator's) on lavapipe.
+        const bool cpu = ctx().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+        EXPECT_LE(d.maxAbs, cpu ? 0.0f : 1e-5f) << "rms " << d.rms;
         EXPECT_EQ(waiting.operatorIds, yielding.operatorIds);
     }
 }
