@@ -100,12 +100,12 @@ Context::Context(const ContextOptions& options)
         m_physicalDevice = choice.device;
         m_queueFamily = choice.queueFamily;
         m_formats = choice.formats;
-        vkGetPhysicalDeviceProperties(m_physicalDevice, &m_properties);
         VkPhysicalDeviceSubgroupProperties subgroup{
             VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
         VkPhysicalDeviceProperties2 properties2{
             VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup, {}};
         vkGetPhysicalDeviceProperties2(m_physicalDevice, &properties2);
+        m_properties = properties2.properties;
         m_computeBallots = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
                            (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT);
         vkGetPhysicalDeviceMemoryProperties(m_physicalDevice, &m_memory);

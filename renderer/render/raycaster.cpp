@@ -149,16 +149,26 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
     return set;
 }
 
+namespace {
+
+// The shader built with CW_YIELD_LANES (`lanes`) or without it.
+template <std::size_t L, std::size_t W>
+gpu::ShaderModuleHandle moduleFor(const gpu::Context& ctx, bool yieldLanes,
+                                  const uint32_t (&lanes)[L], const uint32_t (&without)[W]) {
+    return yieldLanes ? gpu::createShaderModule(ctx, lanes, sizeof lanes)
+                      : gpu::createShaderModule(ctx, without, sizeof without);
+}
+
+} // namespace
+
 VkPipeline Raycaster::pipelineFor(const SliceVariant& variant, const std::vector<int>& alignments) {
     const auto key = std::make_pair(variant, alignments);
     auto found = m_pipelines.find(key);
     if (found != m_pipelines.end()) return found->second.get();
     gpu::PipelineHandle pipeline;
     if (alignments.empty()) {
-        auto module = variant.yieldLanes ? gpu::createShaderModule(m_ctx, raycast_lanes_comp_spv,
-                                                                   sizeof(raycast_lanes_comp_spv))
-                                         : gpu::createShaderModule(m_ctx, raycast_comp_spv,
-                                                                   sizeof(raycast_comp_spv));
+        auto module =
+            moduleFor(m_ctx, variant.yieldLanes, raycast_lanes_comp_spv, raycast_comp_spv);
         const SliceConstants constants(variant);
         pipeline =
             gpu::createComputePipeline(m_ctx, m_layout.get(), module.get(), constants.info());
@@ -172,11 +182,8 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant, const std::vector
         };
         const SliceConstants constants(first,
                                        {static_cast<uint32_t>(alignments.size()), at(1), at(2)});
-        auto module = variant.yieldLanes
-                          ? gpu::createShaderModule(m_ctx, raycast_operators_lanes_comp_spv,
-                                                    sizeof(raycast_operators_lanes_comp_spv))
-                          : gpu::createShaderModule(m_ctx, raycast_operators_comp_spv,
-                                                    sizeof(raycast_operators_comp_spv));
+        auto module = moduleFor(m_ctx, variant.yieldLanes, raycast_operators_lanes_comp_spv,
+                                raycast_operators_comp_spv);
         pipeline = gpu::createComputePipeline(m_ctx, m_operatorLayout.get(), module.get(),
                                               constants.info());
     }

@@ -98,8 +98,9 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
               {15, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr},
               {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr},
               {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, frag, nullptr}});
-    setStorageFetch(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
-    setYieldLanes(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    const bool cpuDevice = ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    setStorageFetch(cpuDevice);
+    setYieldLanes(cpuDevice);
     const bool storage = ctx.formats().storageValues;
     const VkFormat standIn[2] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
                                  storage ? VK_FORMAT_R16_UNORM : VK_FORMAT_R8G8B8A8_UNORM};
