@@ -10,8 +10,10 @@ against itself gave 0.86-1.27 over 8 pairs, medians 0.95-0.98
 (docs/performance.md, "What a fetch costs"). The drift only ever adds time,
 so two more columns compare each build's least disturbed runs: B's fastest
 frame median over A's, and B's fastest frame (the row's cheapest view) over
-A's. Over 5 pairs these moved by 1-2 % where the median ratio moved by 10 %
-(docs/performance.md, "The map's derivatives, baked").
+A's. Where the drift comes in bursts they are steadier than the median ratio
+(docs/performance.md, "The map's derivatives, baked"), but not immune: a
+build that only swapped a `pow` for a product once came out 10 % slower by
+them, where it could only be faster.
 
 Usage: python3 bench/ab_compare.py BENCH_A BENCH_B [--pairs N] [--table FILE]
        [--datasets LIST] [--alignments LIST] [--methods LIST] [--spacings LIST]
