@@ -42,6 +42,7 @@ SliceConstants::SliceConstants(const SliceVariant& v, std::initializer_list<uint
         m_values[at++] = 0;
     m_values[kCensus] = v.census;
     m_values[kCensus + 1] = v.brickedGradients;
+    m_values[kCensus + 2] = static_cast<uint32_t>(v.wholeShininess);
     for (uint32_t i = 0; i < kMost; ++i)
         m_entries[i] = {i, i * 4u, 4u};
     m_info = {kMost, m_entries, kMost * 4u, m_values};

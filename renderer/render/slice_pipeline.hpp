@@ -46,6 +46,9 @@ struct SliceVariant {
     /// The gradients in the bricked layout, loaded and filtered in the shader
     /// (sample_common.h's gradientAt; GpuVolume::gradientLayout decides).
     bool brickedGradients = false;
+    /// The shading's shininess when it is a whole number, else 0: the
+    /// specular power by repeated squaring (sample_common.h's specularPower).
+    int wholeShininess = 0;
     /// The ray caster's lanes that step over transparent samples stop for a
     /// pass of shading as soon as one lane waits (ray_march.h's
     /// CW_YIELD_LANES: its shaders with subgroup ballots; SliceRenderer
@@ -60,9 +63,9 @@ struct SliceVariant {
 /// The specialization constants of `variant` (constant_id 0..5 of
 /// shaders/glsl/sample_common.h), for the slicing and ray-casting pipelines,
 /// up to three `more` (constant_id 6, 7, 8: the ray caster's operators; 0
-/// where not given), the census (constant_id 9, ray_march.h) and the bricked
-/// gradients (constant_id 10, sample_common.h). A shader that does not
-/// declare an id ignores its entry.
+/// where not given), the census (constant_id 9, ray_march.h), the bricked
+/// gradients (constant_id 10, sample_common.h) and the whole-number shininess
+/// (constant_id 11). A shader that does not declare an id ignores its entry.
 class SliceConstants {
 public:
     explicit SliceConstants(const SliceVariant& variant, std::initializer_list<uint32_t> more = {});
@@ -74,7 +77,7 @@ private:
     static constexpr uint32_t kFixed = 6;               ///< constant_id 0..5, from the variant
     static constexpr uint32_t kMore = 3;                ///< constant_id 6..8, from `more`
     static constexpr uint32_t kCensus = kFixed + kMore; ///< constant_id 9
-    static constexpr uint32_t kMost = kCensus + 2;      ///< and 10, the bricked gradients
+    static constexpr uint32_t kMost = kCensus + 3;      ///< and 10, 11: see above
     uint32_t m_values[kMost];
     VkSpecializationMapEntry m_entries[kMost];
     VkSpecializationInfo m_info;

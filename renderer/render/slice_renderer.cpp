@@ -19,6 +19,16 @@
 namespace cutaway::render {
 namespace {
 
+// The shininess as SliceVariant::wholeShininess takes it: the exponent when
+// it is a whole number and a highlight is drawn, else 0 (pow).
+int wholeShininess(const Shading& shading) {
+    const float n = shading.shininess;
+    if (!shading.enabled || shading.specular <= 0.0f || n != std::floor(n) || n < 1.0f ||
+        n > 512.0f)
+        return 0;
+    return static_cast<int>(n);
+}
+
 shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
                                     const CameraMatrices& cam, double sliceMm) {
     shader::FrameUniforms u{};
@@ -471,6 +481,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
     if (m_storageFetch) variant.storageFetch = volume.values.format == VK_FORMAT_R8_UNORM ? 1 : 2;
     variant.brickedGradients = volume.gradientLayout == bake::GradientLayout::Bricked;
+    variant.wholeShininess = wholeShininess(scene.render.shading);
     if (raycast) {
         variant.census = m_census;
         variant.yieldLanes = m_yieldLanes;

@@ -23,8 +23,25 @@ layout(constant_id = 5) const int cwStorageFetch = 0;
 // devices), read as the storage image gradientImage and filtered here
 // (gradientAt); else sampled from gradientTex.
 layout(constant_id = 10) const bool cwBrickedGradients = false;
+// The shininess when it is a whole number (scene range: up to 512), else 0.
+layout(constant_id = 11) const int cwWholeShininess = 0;
 #define CW_SHADING_ON(u) cwShading
 #define CW_LIGHT_COUNT(u) cwLightCount
+
+// x^n for the specular highlight: with a whole-number shininess, by repeated
+// squaring over the bits of the constant, which the compiler unrolls into
+// the few products n needs (5 for the default 32) instead of pow's log2 and
+// exp2 (about 5 % of a ct_head frame without an operator on lavapipe).
+float specularPower(float x, float n) {
+    if (cwWholeShininess <= 0) return pow(x, n);
+    float result = 1.0, square = x;
+    for (int bit = 0; bit < 10; ++bit) { // 512 < 2^10
+        if ((cwWholeShininess & (1 << bit)) != 0) result *= square;
+        square *= square;
+    }
+    return result;
+}
+#define CW_SPECULAR_POWER(x, n) specularPower(x, n)
 
 #include "shared/frame.h"
 #include "shared/gradient.h"

@@ -15,6 +15,11 @@
 #ifndef CW_LIGHT_COUNT
 #define CW_LIGHT_COUNT(u) int((u).flags.x)
 #endif
+// The specular highlight's x^n: pow, unless a shader computes it otherwise
+// (the volume shaders do for a whole-number n: sample_common.h).
+#ifndef CW_SPECULAR_POWER
+#define CW_SPECULAR_POWER(x, n) pow(x, n)
+#endif
 
 CW_NAMESPACE_BEGIN
 
@@ -39,7 +44,7 @@ CW_FUNC vec2 blinnPhong(vec3 n, vec3 toLight, vec3 toEye, float diffuse, float s
     vec3 nf = dot(n, toEye) < 0.0f ? -n : n;
     float d = max(dot(nf, toLight), 0.0f);
     vec3 h = normalize(toLight + toEye);
-    float s = d > 0.0f ? pow(max(dot(nf, h), 0.0f), shininess) : 0.0f;
+    float s = d > 0.0f ? CW_SPECULAR_POWER(max(dot(nf, h), 0.0f), shininess) : 0.0f;
     return vec2(diffuse * d, specular * s);
 }
 

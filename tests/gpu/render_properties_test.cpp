@@ -272,3 +272,35 @@ TEST_F(GpuTest, AReusedRendererFollowsTransferAndSpacingChanges) {
 }
 
 } // namespace cutaway::test
+
+namespace cutaway::test {
+
+// A whole-number shininess takes its highlight by repeated squaring (the
+// specialization constant cwWholeShininess), any other by pow: the two agree.
+// Shininess n + 0.0005 takes pow and differs from x^n by at most
+// 0.0005 / (e n) (about 1e-5); a power one off, x^(n - 1) against x^n, would
+// differ by up to 1 / n of the highlight. Both methods; the highlight itself
+// must show (the control: no specular at all).
+TEST_F(GpuTest, WholeNumberShininessLightsAsPowDoes) {
+    for (RenderMethod method : {RenderMethod::Slicing, RenderMethod::Raycast})
+        for (float n : {32.0f, 20.0f, 7.0f}) {
+            SCOPED_TRACE(std::to_string(int(n)) +
+                         (method == RenderMethod::Raycast ? " raycast" : " slicing"));
+            Scene scene = headScene(48, 64, 64);
+            scene.camera.azimuthDeg = 30.0;
+            scene.camera.elevationDeg = 20.0;
+            scene.render.method = method;
+            scene.render.shading.specular = 0.8f;
+            scene.render.shading.shininess = n;
+            const Image whole = renderScene(ctx(), scene);
+            scene.render.shading.shininess = n + 0.0005f;
+            const Image power = renderScene(ctx(), scene);
+            scene.render.shading.specular = 0.0f;
+            const Image none = renderScene(ctx(), scene);
+            EXPECT_GT(compareImages(whole, none).maxAbs, 0.05f) << "control: a highlight";
+            const ImageDiff d = compareImages(whole, power);
+            EXPECT_LT(d.maxAbs, 1e-3f) << "rms " << d.rms;
+        }
+}
+
+} // namespace cutaway::test
