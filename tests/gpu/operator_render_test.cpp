@@ -142,9 +142,9 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
         const glm::ivec3 dims(20, 18, 16);
         const operators::LocalBox box = operators::deformedBounds(op.params, dims);
         const shader::OperatorParams params = operators::sampledParams(op.params, box, dims);
-        const bake::BakedMap baked = baker.bake(params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
+        const gpu::Image map = baker.bake(params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
         const auto bytes =
-            gpu::downloadImage(ctx(), baked.map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
+            gpu::downloadImage(ctx(), map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
         const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
         float worst = 0.0f;
         for (int z = 0; z < dims.z; ++z)
@@ -163,41 +163,6 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
                     }
                 }
         EXPECT_LE(worst, 2e-3f);
-
-        // The derivatives: per axis i, in section i, the map's texels' central
-        // difference over one texel along i (one-sided at the faces), per
-        // local unit, as the shaders' Jacobian takes it.
-        const auto derivativeBytes = gpu::downloadImage(
-            ctx(), baked.derivatives, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
-        ASSERT_EQ(derivativeBytes.size(), 3 * bytes.size());
-        const auto* derivatives = reinterpret_cast<const uint16_t*>(derivativeBytes.data());
-        const auto mapAt = [&](glm::ivec3 v, int c) {
-            return glm::unpackHalf1x16(
-                halves[4 * std::size_t(v.x + dims.x * (v.y + dims.y * v.z)) + std::size_t(c)]);
-        };
-        const glm::vec3 texel = glm::vec3(box.hi - box.lo) / glm::vec3(dims);
-        float worstDerivative = 0.0f, largest = 0.0f;
-        for (int axis = 0; axis < 3; ++axis)
-            for (int z = 0; z < dims.z; ++z)
-                for (int y = 0; y < dims.y; ++y)
-                    for (int x = 0; x < dims.x; ++x) {
-                        const glm::ivec3 v(x, y, z);
-                        glm::ivec3 lo = v, hi = v;
-                        lo[axis] = std::max(v[axis] - 1, 0);
-                        hi[axis] = std::min(v[axis] + 1, dims[axis] - 1);
-                        const float span = float(hi[axis] - lo[axis]) * texel[axis];
-                        const std::size_t t =
-                            4 * std::size_t(x + dims.x * axis + 3 * dims.x * (y + dims.y * z));
-                        for (int c = 0; c < 4; ++c) {
-                            const float e = (mapAt(hi, c) - mapAt(lo, c)) / span;
-                            const float got = glm::unpackHalf1x16(derivatives[t + std::size_t(c)]);
-                            worstDerivative =
-                                std::max(worstDerivative, std::abs(got - e) / (1.0f + std::abs(e)));
-                            largest = std::max(largest, std::abs(e));
-                        }
-                    }
-        EXPECT_LE(worstDerivative, 2e-3f);
-        EXPECT_GT(largest, 0.05f) << "the operator moves nothing: the check would be empty";
     }
 }
 
