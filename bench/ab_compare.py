@@ -11,10 +11,9 @@ against itself gave 0.86-1.27 over 8 pairs, medians 0.95-0.98
 so two more columns compare each build's least disturbed runs: B's fastest
 frame median over A's, and B's fastest frame (the row's cheapest view) over
 A's. Where the drift comes in bursts they are steadier than the median ratio
-(docs/performance.md, "The map's derivatives, baked (measured, not kept)"), but
-not immune: a
-build that only swapped a `pow` for a product once came out 10 % slower by
-them, where it could only be faster.
+(docs/performance.md, "The map's derivatives, baked (measured, not kept)"),
+but not immune: a build that only swapped a `pow` for a product once came
+out 10 % slower by them, where it could only be faster.
 
 Usage: python3 bench/ab_compare.py BENCH_A BENCH_B [--pairs N] [--table FILE]
        [--datasets LIST] [--alignments LIST] [--methods LIST] [--spacings LIST]
