@@ -9,7 +9,8 @@ SaturationPass::SaturationPass(const gpu::Context& ctx, VkSampler nearest)
     : m_ctx(ctx), m_nearest(nearest) {
     m_setLayout = gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                                               VK_SHADER_STAGE_FRAGMENT_BIT, nullptr}});
-    m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get()});
+    m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get()}, sizeof(float),
+                                         VK_SHADER_STAGE_FRAGMENT_BIT);
     auto vert = gpu::createShaderModule(ctx, saturation_vert_spv, sizeof(saturation_vert_spv));
     auto frag = gpu::createShaderModule(ctx, saturation_frag_spv, sizeof(saturation_frag_spv));
     gpu::GraphicsPipelineParts parts;
@@ -31,7 +32,7 @@ gpu::DescriptorSet SaturationPass::bind(const gpu::Image& color) const {
 }
 
 void SaturationPass::record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& color,
-                            const gpu::Image& depthStencil) const {
+                            const gpu::Image& depthStencil, float opaqueAlpha) const {
     gpu::transition(cmd, color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                     VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
@@ -62,6 +63,8 @@ void SaturationPass::record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu:
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_layout.get(), 0, 1, &set, 0,
                             nullptr);
+    vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(float),
+                       &opaqueAlpha);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRendering(cmd);
     gpu::transition(cmd, depthStencil, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,

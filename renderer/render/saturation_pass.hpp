@@ -1,10 +1,11 @@
 #pragma once
 // Early ray termination for slicing. Slices are composited front to back, so
-// once a pixel is opaque (alpha >= CW_OPAQUE_ALPHA, shaders/shared/frame.h)
-// nothing behind it shows. Every few slices the slicing pass pauses and this
-// pass writes depth 0 into those pixels; the slices behind then fail the early
-// depth test and are never shaded. Slices keep their LEQUAL depth test against
-// the meshes' depth, so one depth buffer carries both.
+// once a pixel's alpha reaches the scene's termination opacity
+// (/render/termination_opacity) what lies behind hardly shows. Every few
+// slices the slicing pass pauses and this pass writes depth 0 into those
+// pixels; the slices behind then fail the early depth test and are never
+// shaded. Slices keep their LEQUAL depth test against the meshes' depth, so
+// one depth buffer carries both.
 #include "gpu/context.hpp"
 #include "gpu/pipeline.hpp"
 #include "gpu/resources.hpp"
@@ -20,9 +21,10 @@ public:
 
     /// Outside rendering, between two chunks of slices: `color` is in
     /// COLOR_ATTACHMENT_OPTIMAL before and after, `depthStencil` in
-    /// DEPTH_STENCIL_ATTACHMENT_OPTIMAL; its stencil is kept.
+    /// DEPTH_STENCIL_ATTACHMENT_OPTIMAL; its stencil is kept. Marks the
+    /// pixels whose alpha is at least `opaqueAlpha`.
     void record(VkCommandBuffer cmd, VkDescriptorSet set, const gpu::Image& color,
-                const gpu::Image& depthStencil) const;
+                const gpu::Image& depthStencil, float opaqueAlpha) const;
 
 private:
     const gpu::Context& m_ctx;

@@ -53,6 +53,8 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
     const bool byLabel = volume.labels && !scene.labelTransfers.empty();
     u.flags = glm::vec4(static_cast<float>(count), s.enabled ? 1.0f : 0.0f,
                         preintegrated ? 1.0f : 0.0f, byLabel ? 1.0f : 0.0f);
+    u.termination =
+        glm::vec4(static_cast<float>(scene.render.terminationOpacity), 0.0f, 0.0f, 0.0f);
     return u;
 }
 
@@ -529,7 +531,8 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
         for (std::size_t begin = 0; begin < std::max<std::size_t>(count, 1);
              begin += kSlicesPerChunk) {
             if (begin > 0) {
-                m_saturation->record(cmd, saturationSet.set, m_color, m_depthStencil);
+                m_saturation->record(cmd, saturationSet.set, m_color, m_depthStencil,
+                                     uniforms.termination.x);
                 for (std::size_t t = 0; t < volumeTargets; ++t)
                     colors[t].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
                 depthAttachment.loadOp = ds.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;

@@ -124,6 +124,12 @@ enum class Composition { Separate, Sequential };
 enum class RenderMethod { Slicing, Raycast };
 
 /// /render
+/// Early ray termination's default: a pixel takes no more samples once its
+/// opacity reaches 1 - 1/255, so what it leaves behind could change any
+/// channel by at most one step of an 8-bit image (VTK's GPU ray caster stops
+/// at the same opacity). 1 takes every sample that can show.
+inline constexpr double kDefaultTerminationOpacity = 1.0 - 1.0 / 255.0;
+
 struct RenderSettings {
     int width = 512;           ///< /render/size[0], [1, 16384]
     int height = 512;          ///< /render/size[1]
@@ -132,6 +138,8 @@ struct RenderSettings {
     Classification classification = Classification::Preintegrated;
     Composition composition = Composition::Separate;
     RenderMethod method = RenderMethod::Slicing;
+    /// /render/termination_opacity, [0.5, 1]: see kDefaultTerminationOpacity
+    double terminationOpacity = kDefaultTerminationOpacity;
     Shading shading;
 };
 

@@ -36,6 +36,10 @@ namespace scene_detail {
 ///                   Composition in scene.hpp
 ///  * method         "slicing" or "raycast", default "slicing": see RenderMethod in
 ///                   scene.hpp
+///  * termination_opacity number, in [0.5, 1], default 1 - 1/255
+///                   A pixel takes no more samples once its opacity reaches this
+///                   (early ray termination); what lies behind could change a
+///                   channel by at most 1 minus it. 1: every sample that can show.
 ///  * shading        object, default {}: Blinn-Phong material of every sample
 ///    * enabled      boolean, default true: false shows the transfer function's colours unlit
 ///    * diffuse      number, in [0, 1], default 0.8
@@ -77,6 +81,8 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
 
     const std::string method = reader.string("method", "slicing", {"slicing", "raycast"});
     render.method = method == "raycast" ? RenderMethod::Raycast : RenderMethod::Slicing;
+    render.terminationOpacity =
+        reader.number("termination_opacity", render.terminationOpacity, 0.5, 1.0);
 
     reader.object("shading", [&](JsonReader& shading) {
         Shading& s = render.shading;

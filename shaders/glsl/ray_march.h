@@ -239,7 +239,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
         c = shade(c, gradientAt(shadeAt), m.toEye);
         composite(c, CW_ID_BACKGROUND, sum, id);
-        if (sum.a >= CW_OPAQUE_ALPHA) break;
+        if (sum.a >= u.termination.x) break;
         tc += tcStep;
         front = next;
         k += 1.0;
@@ -334,7 +334,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
         vec4 c = shadeOperatorSlab(op, map, feature, mode, s, pointAt(m, k), m.toEye, m.obliquity,
                                    stepMm, moved);
         composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
-        if (sum.a >= CW_OPAQUE_ALPHA) break;
+        if (sum.a >= u.termination.x) break;
         front = next;
         k += 1.0;
     }
@@ -403,14 +403,14 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
         float before = hit ? box0.x - 1.0 : samples.y;
         float after = hit ? box0.y + 1.0 : samples.y + 1.0;
         backgroundRun(m, max(samples.x, volume.x), min(before, volume.y), sum, id);
-        if (sum.a < CW_OPAQUE_ALPHA)
+        if (sum.a < u.termination.x)
             operatorRun(slots.ops[0], map0, feature0, 0, cwAlignment, m, box0.x, box0.y, sum, id);
-        if (sum.a < CW_OPAQUE_ALPHA) backgroundRun(m, max(after, volume.x), volume.y, sum, id);
+        if (sum.a < u.termination.x) backgroundRun(m, max(after, volume.x), volume.y, sum, id);
     } else {
         // Each pass: the untouched volume up to the next box, then that box
         // (as many passes as boxes the ray meets, plus one).
         float k = samples.x;
-        while (k <= samples.y && sum.a < CW_OPAQUE_ALPHA) {
+        while (k <= samples.y && sum.a < u.termination.x) {
             int slot = -1;
             float end = samples.y;
             runFrom(k, box0, 0, slot, end);
@@ -419,7 +419,7 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
             if (slot < 0) {
                 backgroundRun(m, max(k, volume.x), min(end, volume.y), sum, id);
                 k = end + 1.0;
-                if (k > samples.y || sum.a >= CW_OPAQUE_ALPHA) break;
+                if (k > samples.y || sum.a >= u.termination.x) break;
                 end = samples.y;
                 runFrom(k, box0, 0, slot, end);
                 runFrom(k, box1, 1, slot, end);

@@ -7,10 +7,6 @@
 #include "shared/glsl_cpp.h"
 
 #define CW_MAX_LIGHTS 4
-// Early ray termination: a pixel whose composited opacity reaches this takes
-// no more samples (slicing marks it in depth every few slices). What is left
-// behind it could add at most 1 - CW_OPAQUE_ALPHA to any channel.
-#define CW_OPAQUE_ALPHA 0.999
 
 CW_NAMESPACE_BEGIN
 
@@ -27,19 +23,23 @@ struct FrameUniforms {
     vec4 flags;                     // x: number of directional lights ; y: shading on (1) / off (0)
                                     // z: 1 pre-integrated table (2D), 0 post-classification (1D)
                                     // w: 1 classification by label (classTex), 0 one table
+    vec4 termination;               // x: early ray termination: a pixel whose composited opacity
+                      // reaches this takes no more samples (/render/termination_opacity;
+                      // what lies behind could add at most 1 - x to any channel)
 };
 
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
 static_assert(sizeof(cutaway::shader::FrameUniforms) ==
-              2 * 64 + 5 * 16 + 2 * CW_MAX_LIGHTS * 16 + 16);
+              2 * 64 + 5 * 16 + 2 * CW_MAX_LIGHTS * 16 + 2 * 16);
 static_assert(offsetof(cutaway::shader::FrameUniforms, worldToTexture) == 64);
 static_assert(offsetof(cutaway::shader::FrameUniforms, eye) == 128);
 static_assert(offsetof(cutaway::shader::FrameUniforms, headlight) == 192);
 static_assert(offsetof(cutaway::shader::FrameUniforms, lightDir) == 208);
 static_assert(offsetof(cutaway::shader::FrameUniforms, lightColor) == 208 + 16 * CW_MAX_LIGHTS);
 static_assert(offsetof(cutaway::shader::FrameUniforms, flags) == 208 + 32 * CW_MAX_LIGHTS);
+static_assert(offsetof(cutaway::shader::FrameUniforms, termination) == 224 + 32 * CW_MAX_LIGHTS);
 #endif
 
 #endif

@@ -30,6 +30,7 @@ const char* const kFullExample = R"({
                                  "intensity": 0.4 },
                                { "direction": [0, 0, 1] } ] },
   "render": { "size": [640, 480], "slice_spacing": 0.5, "background": [0.1, 0.2, 0.3],
+              "termination_opacity": 0.98,
               "shading": { "enabled": false, "diffuse": 0.7, "specular": 0.2, "shininess": 64 } },
   "output": { "pattern": "out/head_####.exr", "pixel_type": "float", "compression": "piz",
               "png": true }
@@ -70,6 +71,7 @@ TEST(SceneParser, FillsDefaults) {
     EXPECT_EQ(scene.render.width, 512);
     EXPECT_EQ(scene.render.height, 512);
     EXPECT_EQ(scene.render.sliceSpacing, 1.0);
+    EXPECT_EQ(scene.render.terminationOpacity, 1.0 - 1.0 / 255.0);
     EXPECT_EQ(scene.render.background, glm::vec4(0, 0, 0, 1));
     EXPECT_TRUE(scene.render.shading.enabled);
     EXPECT_EQ(scene.render.shading.diffuse, 0.8f);
@@ -117,6 +119,7 @@ TEST(SceneParser, ReadsEveryKeyIntoItsField) {
     EXPECT_EQ(scene.render.width, 640);
     EXPECT_EQ(scene.render.height, 480);
     EXPECT_EQ(scene.render.sliceSpacing, 0.5);
+    EXPECT_EQ(scene.render.terminationOpacity, 0.98);
     EXPECT_EQ(scene.render.background, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
     EXPECT_FALSE(scene.render.shading.enabled);
     EXPECT_EQ(scene.render.shading.diffuse, 0.7f);
