@@ -2,30 +2,79 @@
 
 #include "gpu/pipeline.hpp"
 #include "operator_bake_comp.spv.h"
+#include "operator_derivative_comp.spv.h"
 #include "shared/operator_frame.h"
 
 namespace cutaway::bake {
 
+namespace {
+
+constexpr VkFormat kMapFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr glm::uvec3 kGroup(8, 8, 4); // both shaders' local size
+
+void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout,
+              VkDescriptorSet set, const shader::OperatorBakeParams& push, glm::uvec3 domain) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+    const glm::uvec3 groups = (domain + kGroup - 1u) / kGroup;
+    vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
+}
+
+// Compute writes (or UNDEFINED) before, shader reads and copies after.
+void toShaderRead(VkCommandBuffer cmd, const gpu::Image& image) {
+    gpu::transition(cmd, image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
+                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                        VK_ACCESS_2_TRANSFER_READ_BIT);
+}
+
+} // namespace
+
 OperatorBaker::OperatorBaker(const gpu::Context& ctx) : m_ctx(ctx) {
-    m_setLayout = gpu::createSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}});
+    const auto compute = VK_SHADER_STAGE_COMPUTE_BIT;
+    m_setLayout =
+        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::OperatorBakeParams),
-                                         VK_SHADER_STAGE_COMPUTE_BIT);
+                                         compute);
     auto module =
         gpu::createShaderModule(ctx, operator_bake_comp_spv, sizeof(operator_bake_comp_spv));
     m_pipeline = gpu::createComputePipeline(ctx, m_layout.get(), module.get());
+
+    m_derivativeSetLayout =
+        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
+    m_derivativeLayout = gpu::createPipelineLayout(ctx, m_derivativeSetLayout.get(),
+                                                   sizeof(shader::OperatorBakeParams), compute);
+    auto derivative = gpu::createShaderModule(ctx, operator_derivative_comp_spv,
+                                              sizeof(operator_derivative_comp_spv));
+    m_derivativePipeline =
+        gpu::createComputePipeline(ctx, m_derivativeLayout.get(), derivative.get());
 }
 
-gpu::Image OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 lo, glm::vec3 hi,
-                               glm::ivec3 dims) const {
-    const VkExtent3D extent{uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)};
-    gpu::Image out = gpu::createImage(
-        m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R16G16B16A16_SFLOAT, extent,
-        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+BakedMap OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 lo, glm::vec3 hi,
+                             glm::ivec3 dims) const {
+    const VkImageUsageFlags usage =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    BakedMap out;
+    out.map = gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, kMapFormat,
+                               {uint32_t(dims.x), uint32_t(dims.y), uint32_t(dims.z)}, usage);
+    const glm::ivec3 half = derivativeDims(dims);
+    out.derivatives =
+        gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, kMapFormat,
+                         {uint32_t(3 * half.x), uint32_t(half.y), uint32_t(half.z)}, usage);
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
-    gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
-                              VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              out.map.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+    gpu::DescriptorSet derivativeSet = gpu::allocateDescriptorSet(
+        m_ctx, m_derivativeSetLayout.get(), {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}});
+    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              out.map.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              out.derivatives.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     shader::OperatorBakeParams push{};
     push.a = params.a;
     push.b = params.b;
@@ -33,8 +82,23 @@ gpu::Image OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 l
     push.mapLo = glm::vec4(lo, 0.0f);
     push.mapHi = glm::vec4(hi, 0.0f);
     push.dims = dims;
-    gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &push,
-                          sizeof(push), glm::uvec3(8, 8, 4));
+    m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        for (const gpu::Image* image : {&out.map, &out.derivatives})
+            gpu::transition(cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                            VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+        dispatch(cmd, m_pipeline.get(), m_layout.get(), set.set, push, glm::uvec3(dims));
+        // The derivatives read the map's texels the first pass wrote.
+        gpu::transition(
+            cmd, out.map, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+        dispatch(cmd, m_derivativePipeline.get(), m_derivativeLayout.get(), derivativeSet.set, push,
+                 glm::uvec3(3 * half.x, half.y, half.z));
+        toShaderRead(cmd, out.map);
+        toShaderRead(cmd, out.derivatives);
+    });
     return out;
 }
 

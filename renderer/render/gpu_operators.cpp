@@ -86,18 +86,26 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
                                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
             op->set = gpu::allocateDescriptorSet(m_ctx, m_setLayout,
                                                  {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}});
+                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}});
             gpu::writeBufferDescriptor(m_ctx, op->set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                        op->uniforms.buffer.get(), sizeof(shader::OperatorUniforms));
         }
         op->box = boxes[i];
         if (rebake) {
             const operators::LocalBox& local = op->box.local;
-            op->map = m_baker.bake(operators::sampledParams(spec.params, local, spec.resolution),
-                                   glm::vec3(local.lo), glm::vec3(local.hi), spec.resolution);
+            op->map = {}; // freed before their successors are made
+            op->derivatives = {};
+            bake::BakedMap baked =
+                m_baker.bake(operators::sampledParams(spec.params, local, spec.resolution),
+                             glm::vec3(local.lo), glm::vec3(local.hi), spec.resolution);
+            op->map = std::move(baked.map);
+            op->derivatives = std::move(baked.derivatives);
             gpu::writeImageDescriptor(m_ctx, op->set.set, 1,
                                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, op->map.view.get(),
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
+            gpu::writeImageDescriptor(
+                m_ctx, op->set.set, 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                op->derivatives.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
             ++m_bakes;
         }
         std::uint64_t fieldId = 0;

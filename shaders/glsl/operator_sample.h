@@ -251,12 +251,24 @@ Slab operatorSlab(int mode, Resolved front, Resolved back) {
     return s;
 }
 
+// The map's derivative along local axis `axis` at local point q: section
+// `axis` of the operator's `derivatives` (bake/operator_bake.hpp), clamped
+// to the section's texel centres along x as the sampler clamps y and z. One
+// fetch where a central difference of the map took two.
+vec4 mapDerivative(OperatorUniforms op, sampler3D derivatives, vec3 q, int axis) {
+    vec3 tc = (q - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz);
+    float width = float(textureSize(derivatives, 0).x) / 3.0; // the map's texels along x
+    tc.x = (clamp(tc.x * width, 0.5, width - 0.5) + float(axis) * width) / (3.0 * width);
+    return textureLod(derivatives, tc, 0.0);
+}
+
 // The slab's premultiplied, shaded colour; `world` is p' (the slab's front),
 // `stepMm` the slab's length along the ray toward -toEye. `moved`: whether
 // the colour came from a point that moved with the operator (not the
 // feature left in place).
-vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D feature, int mode, Slab s,
-                       vec3 world, vec3 toEye, float obliquity, float stepMm, out bool moved) {
+vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D feature, int mode,
+                       Slab s, vec3 world, vec3 toEye, float obliquity, float stepMm,
+                       out bool moved) {
     moved = false;
     if (s.empty) return vec4(0.0);
     bool masked = s.middle.which == CW_CASE_MASKED;
@@ -276,15 +288,12 @@ vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D feature, in
     }
 
     // Jacobian of the continuous backward map and gradient of the cut distance,
-    // by central differences over one texel of the map.
+    // by central differences over one texel of the map (baked: mapDerivative).
     vec3 q = (op.worldToLocal * vec4(shadePoint, 1.0)).xyz;
-    float h = op.mapHi.w;
     mat3 jacobian;
     vec3 cutGradient;
     for (int i = 0; i < 3; ++i) {
-        vec3 e = vec3(0.0);
-        e[i] = h;
-        vec4 d = (mapAt(op, map, q + e) - mapAt(op, map, q - e)) / (2.0 * h);
+        vec4 d = mapDerivative(op, derivatives, q, i);
         vec3 column = d.xyz;
         column[i] += 1.0;
         jacobian[i] = column;

@@ -278,8 +278,8 @@ float stepsOverEmptyBlocks(OperatorUniforms op, int slot, March m, float k, vec3
 
 // Samples k0..k1, all in the operator's deformed box, composited into `sum`.
 // Each resolves one point: a slab's back is the next one's front.
-void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot, int mode, March m,
-                 float k0, float k1, inout vec4 sum, inout float id) {
+void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, sampler3D feature,
+                 int slot, int mode, March m, float k0, float k1, inout vec4 sum, inout float id) {
     float stepMm = m.spacing * m.obliquity;
     vec3 blockStep = mat3(op.worldToLocal) * (m.dir * (m.spacing / m.fd)) /
                      (op.mapHi.xyz - op.mapLo.xyz) * op.blocks.xyz;
@@ -331,8 +331,8 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
         if (!visible) continue;
         bool moved;
         if (cwCensus) census.w += 1.0;
-        vec4 c = shadeOperatorSlab(op, map, feature, mode, s, pointAt(m, k), m.toEye, m.obliquity,
-                                   stepMm, moved);
+        vec4 c = shadeOperatorSlab(op, derivatives, feature, mode, s, pointAt(m, k), m.toEye,
+                                   m.obliquity, stepMm, moved);
         composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
         if (sum.a >= u.termination.x) break;
         front = next;
@@ -354,10 +354,13 @@ layout(std140, set = 0, binding = 8) readonly buffer RayOperators {
 slots;
 layout(set = 1, binding = 1) uniform sampler3D map0;
 layout(set = 1, binding = 2) uniform sampler3D feature0;
+layout(set = 1, binding = 3) uniform sampler3D derivatives0;
 layout(set = 2, binding = 1) uniform sampler3D map1;
 layout(set = 2, binding = 2) uniform sampler3D feature1;
+layout(set = 2, binding = 3) uniform sampler3D derivatives1;
 layout(set = 3, binding = 1) uniform sampler3D map2;
 layout(set = 3, binding = 2) uniform sampler3D feature2;
+layout(set = 3, binding = 3) uniform sampler3D derivatives2;
 // Each slot's blocks' distances (see stepsOverEmptyBlocks).
 
 // Samples first..last of both runs `a` and `b` (first > last: none).
@@ -404,7 +407,8 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
         float after = hit ? box0.y + 1.0 : samples.y + 1.0;
         backgroundRun(m, max(samples.x, volume.x), min(before, volume.y), sum, id);
         if (sum.a < u.termination.x)
-            operatorRun(slots.ops[0], map0, feature0, 0, cwAlignment, m, box0.x, box0.y, sum, id);
+            operatorRun(slots.ops[0], map0, derivatives0, feature0, 0, cwAlignment, m, box0.x,
+                        box0.y, sum, id);
         if (sum.a < u.termination.x) backgroundRun(m, max(after, volume.x), volume.y, sum, id);
     } else {
         // Each pass: the untouched volume up to the next box, then that box
@@ -426,11 +430,14 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
                 runFrom(k, box2, 2, slot, end);
             }
             if (slot == 0) {
-                operatorRun(slots.ops[0], map0, feature0, 0, cwAlignment, m, k, end, sum, id);
+                operatorRun(slots.ops[0], map0, derivatives0, feature0, 0, cwAlignment, m, k, end,
+                            sum, id);
             } else if (cwOperatorCount > 1 && slot == 1) {
-                operatorRun(slots.ops[1], map1, feature1, 1, cwAlignment1, m, k, end, sum, id);
+                operatorRun(slots.ops[1], map1, derivatives1, feature1, 1, cwAlignment1, m, k, end,
+                            sum, id);
             } else if (cwOperatorCount > 2 && slot == 2) {
-                operatorRun(slots.ops[2], map2, feature2, 2, cwAlignment2, m, k, end, sum, id);
+                operatorRun(slots.ops[2], map2, derivatives2, feature2, 2, cwAlignment2, m, k, end,
+                            sum, id);
             }
             k = end + 1.0;
         }

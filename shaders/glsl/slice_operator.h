@@ -12,6 +12,7 @@ layout(std140, set = 1, binding = 0) uniform Operator {
 };
 layout(set = 1, binding = 1) uniform sampler3D operatorMap;
 layout(set = 1, binding = 2) uniform sampler3D featureTex;
+layout(set = 1, binding = 3) uniform sampler3D operatorDerivatives;
 
 void main() {
     vec3 toEye = toEyeFrom(worldPos);
@@ -22,7 +23,7 @@ void main() {
     if (cwPreintegrated)
         back = resolve(op, operatorMap, featureTex, cwAlignment, worldPos - toEye * stepMm);
     bool moved;
-    vec4 c = shadeOperatorSlab(op, operatorMap, featureTex, cwAlignment,
+    vec4 c = shadeOperatorSlab(op, operatorDerivatives, featureTex, cwAlignment,
                                operatorSlab(cwAlignment, front, back), worldPos, toEye, obliquity,
                                stepMm, moved);
     emit(c, moved ? op.band.y : CW_ID_BACKGROUND);

@@ -88,8 +88,8 @@ TEST_F(ExportRender, TheExportedVolumeLooksLikeTheRender) {
 }
 
 // Lit, the moved material's normals come from the render's Jacobian of the
-// map (Eq. 5, central differences of the baked map) and from the export's
-// own grid: the pair differs by 0.0081 (unlit: 0.0049). Measured with the
+// map (Eq. 5, from the map's baked derivatives) and from the export's own
+// grid: the pair differs by 0.0081 (unlit: 0.0049). Measured with the
 // Jacobian left out (the identity): 0.022; with its columns taken from the
 // wrong axes: 0.026. Diffuse light only, so highlights do not weigh a
 // normal's error more where they fall.

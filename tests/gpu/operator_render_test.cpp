@@ -139,12 +139,12 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
     bake::OperatorBaker baker(ctx());
     for (const OperatorSpec& op : s.operators) {
         SCOPED_TRACE(op.name);
-        const glm::ivec3 dims(20, 18, 16);
+        const glm::ivec3 dims(20, 17, 16);
         const operators::LocalBox box = operators::deformedBounds(op.params, dims);
         const shader::OperatorParams params = operators::sampledParams(op.params, box, dims);
-        const gpu::Image map = baker.bake(params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
+        const bake::BakedMap baked = baker.bake(params, glm::vec3(box.lo), glm::vec3(box.hi), dims);
         const auto bytes =
-            gpu::downloadImage(ctx(), map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
+            gpu::downloadImage(ctx(), baked.map, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
         const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
         float worst = 0.0f;
         for (int z = 0; z < dims.z; ++z)
@@ -163,6 +163,54 @@ TEST_F(GpuTest, OperatorBakeMatchesTheSharedHeaderOnTheCpu) {
                     }
                 }
         EXPECT_LE(worst, 2e-3f);
+
+        // The derivatives, at half the map's resolution: per axis i, in
+        // section i, the mean over the 2x2x2 map texels a half texel covers
+        // (clamped at the far faces) of their central differences over one
+        // texel along i (one-sided at the faces), per local unit. 17 map
+        // texels along y: the last half texel covers one row, twice.
+        const auto derivativeBytes = gpu::downloadImage(
+            ctx(), baked.derivatives, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 8);
+        const glm::ivec3 half = bake::derivativeDims(dims);
+        ASSERT_EQ(half, glm::ivec3(10, 9, 8));
+        ASSERT_EQ(derivativeBytes.size(), std::size_t(3 * half.x * half.y * half.z) * 8);
+        const auto* derivatives = reinterpret_cast<const uint16_t*>(derivativeBytes.data());
+        const auto mapAt = [&](glm::ivec3 v, int c) {
+            return glm::unpackHalf1x16(
+                halves[4 * std::size_t(v.x + dims.x * (v.y + dims.y * v.z)) + std::size_t(c)]);
+        };
+        const glm::vec3 texel = glm::vec3(box.hi - box.lo) / glm::vec3(dims);
+        const auto centralDifference = [&](glm::ivec3 v, int axis, int c) {
+            glm::ivec3 lo = v, hi = v;
+            lo[axis] = std::max(v[axis] - 1, 0);
+            hi[axis] = std::min(v[axis] + 1, dims[axis] - 1);
+            const float span = float(hi[axis] - lo[axis]) * texel[axis];
+            return (mapAt(hi, c) - mapAt(lo, c)) / span;
+        };
+        float worstDerivative = 0.0f, largest = 0.0f;
+        for (int axis = 0; axis < 3; ++axis)
+            for (int z = 0; z < half.z; ++z)
+                for (int y = 0; y < half.y; ++y)
+                    for (int x = 0; x < half.x; ++x) {
+                        const std::size_t t =
+                            4 * std::size_t(x + half.x * axis + 3 * half.x * (y + half.y * z));
+                        for (int c = 0; c < 4; ++c) {
+                            float e = 0.0f;
+                            for (int corner = 0; corner < 8; ++corner) {
+                                const glm::ivec3 v = glm::min(
+                                    2 * glm::ivec3(x, y, z) +
+                                        glm::ivec3(corner & 1, (corner >> 1) & 1, corner >> 2),
+                                    dims - 1);
+                                e += centralDifference(v, axis, c) / 8.0f;
+                            }
+                            const float got = glm::unpackHalf1x16(derivatives[t + std::size_t(c)]);
+                            worstDerivative =
+                                std::max(worstDerivative, std::abs(got - e) / (1.0f + std::abs(e)));
+                            largest = std::max(largest, std::abs(e));
+                        }
+                    }
+        EXPECT_LE(worstDerivative, 2e-3f);
+        EXPECT_GT(largest, 0.05f) << "the operator moves nothing: the check would be empty";
     }
 }
 
