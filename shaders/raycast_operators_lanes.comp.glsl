@@ -4,6 +4,5 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #define CW_YIELD_LANES
-#define CW_TILES_FROM_COUNTER
 #define CW_RAY_OPERATORS
 #include "glsl/ray_march.h"

@@ -54,10 +54,6 @@ void transition(VkCommandBuffer cmd, const Image& image, VkImageLayout from, VkI
 /// Makes transfer writes (a copy into a host-visible buffer) visible to the host.
 void barrierTransferToHost(VkCommandBuffer cmd);
 
-/// Records a global memory barrier (synchronization2).
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
-
 /// Writes `count` texels, starting with texel `first` of the image (x fastest,
 /// then y, then z or layer), tightly packed to `dst`.
 using TexelWriter = std::function<void(std::size_t first, std::size_t count, std::byte* dst)>;

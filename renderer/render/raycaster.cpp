@@ -7,11 +7,9 @@
 #include "render/ray_cells.hpp"
 #include "shared/tile_order.h"
 
-#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
-#include <thread>
 
 namespace cutaway::render {
 
@@ -85,7 +83,6 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
                                    {4, sampled, 1, cs, nullptr},
                                    {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
                                    {6, storage, 1, cs, nullptr},
-                                   {7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
                                    {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, cs, nullptr},
                                    {9, storage, 1, cs, nullptr},
                                    {10, storage, 1, cs, nullptr},
@@ -104,9 +101,6 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
     m_operatorUniforms =
         gpu::createBuffer(ctx, sizeof(shader::OperatorUniforms) * CW_RAY_MAX_OPERATORS,
                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    m_tileCounters = gpu::createBuffer(
-        ctx, 2 * sizeof(std::uint32_t),
-        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
 }
 
 gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
@@ -117,7 +111,7 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
                                                         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                                          {sampled, 5},
                                                          {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 9},
-                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}});
+                                                         {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}});
     gpu::writeBufferDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, in.uniforms,
                                in.uniformBytes);
     gpu::writeImageDescriptor(m_ctx, set.set, 1, sampled, in.values, bake::kValuesLayout, m_linear);
@@ -142,8 +136,6 @@ gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
                               m_cells.distance.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeBufferDescriptor(m_ctx, set.set, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                                m_operatorUniforms.buffer.get(), m_operatorUniforms.size);
-    gpu::writeBufferDescriptor(m_ctx, set.set, 7, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                               m_tileCounters.buffer.get(), m_tileCounters.size);
     // Slots without an operator repeat the first one's, or the cells' (unread,
     // but lavapipe binds every descriptor of a set).
     for (std::size_t i = 0; i < CW_RAY_MAX_OPERATORS; ++i) {
@@ -254,21 +246,12 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
                  0u,
                  packTile(opTiles.lo),
                  packTile(opTiles.hi)};
-    if (variant.yieldLanes) { // the shaders take their tiles from two counters: zero them
-        const auto counting =
-            VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
-        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, counting,
-                           VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
-        vkCmdFillBuffer(cmd, m_tileCounters.buffer.get(), 0, VK_WHOLE_SIZE, 0);
-        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, counting);
-    }
     if (opTiles.lo != all.lo || opTiles.hi != all.hi) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant, {}));
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_layout.get(), 0, 1, &set, 0,
                                 nullptr);
         vkCmdPushConstants(cmd, m_layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        dispatchTiles(cmd, groups, variant.yieldLanes);
+        vkCmdDispatch(cmd, groups.x, groups.y, 1);
     }
     if (!opTiles.empty()) recordOperators(cmd, set, variant, operators, opTiles, push);
     for (const gpu::Image* target : {&targets.color, &targets.id})
@@ -300,19 +283,7 @@ void Raycaster::recordOperators(VkCommandBuffer cmd, VkDescriptorSet set,
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,
                             static_cast<uint32_t>(sets.size()), sets.data(), 0, nullptr);
     vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    dispatchTiles(cmd, groups, variant.yieldLanes);
-}
-
-void Raycaster::dispatchTiles(VkCommandBuffer cmd, glm::uvec2 tiles, bool fromCounter) const {
-    if (!fromCounter) {
-        vkCmdDispatch(cmd, tiles.x, tiles.y, 1);
-        return;
-    }
-    // Workgroups that take tiles until none are left (CW_TILES_FROM_COUNTER):
-    // a few per core, since lavapipe gives each of its threads (one per core)
-    // a contiguous share of them; the surplus find the counter spent.
-    const std::uint32_t cores = std::max(1u, std::thread::hardware_concurrency());
-    vkCmdDispatch(cmd, std::min(tiles.x * tiles.y, 4 * cores), 1, 1);
+    vkCmdDispatch(cmd, groups.x, groups.y, 1);
 }
 
 } // namespace cutaway::render

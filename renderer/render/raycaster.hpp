@@ -112,10 +112,6 @@ private:
     void recordOperators(VkCommandBuffer cmd, VkDescriptorSet set, const SliceVariant& variant,
                          const std::vector<Operator>& operators, const TileRect& tiles,
                          RayPush push);
-    /// Dispatches the pass over `tiles` (8x8 pixels each): one workgroup per
-    /// tile, or with `fromCounter` a few that take the tiles from
-    /// m_tileCounters (the shaders built for CPU devices).
-    void dispatchTiles(VkCommandBuffer cmd, glm::uvec2 tiles, bool fromCounter) const;
 
     const gpu::Context& m_ctx;
     VkSampler m_linear, m_nearest;
@@ -125,7 +121,6 @@ private:
     std::map<std::pair<SliceVariant, std::vector<int>>, gpu::PipelineHandle> m_pipelines;
     gpu::Buffer m_operatorUniforms; ///< CW_RAY_MAX_OPERATORS OperatorUniforms, host-mapped
     gpu::Buffer m_visible;          ///< VisibleValues::firstFrom of the cells' classification
-    gpu::Buffer m_tileCounters;     ///< the next tile of each pass (binding 7), zeroed per frame
     struct Cells {
         gpu::Image distance;                ///< R8_UINT, RayCells::distance
         glm::vec4 perTexture{0.0f};         ///< xyz: cells across the texture; w: the longest slab

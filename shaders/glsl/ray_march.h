@@ -445,11 +445,24 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
 }
 #endif
 
-// The ray of the pixel that invocation `local` (as gl_LocalInvocationID)
-// marches in `tile`, composited into the targets.
-void marchPixel(uvec2 tile, uvec2 local) {
-    census = vec4(0.0); // an invocation may march several pixels
-    ivec2 pixel = ivec2(tile * 8u + pixelInTile(local));
+void main() {
+    // Workgroups take rows of tiles in an order that spreads each core's
+    // share over the image, and each 8 invocations a 4x2 block of pixels
+    // (shared/tile_order.h).
+    uint tileRow = tileRowOf(gl_WorkGroupID.y, gl_NumWorkGroups.y, ray.rowStride);
+    uvec2 tile = uvec2(gl_WorkGroupID.x, tileRow) + unpackTile(ray.tileOffset);
+#ifndef CW_RAY_OPERATORS
+    // Frames with operators run this shader over the image but the tiles
+    // their boxes may cover (Raycaster::record). lavapipe runs every part of
+    // a shader at least once per 8 rays, masked where no ray takes it: an
+    // operator's resolve and shading, run so once, cost rays that meet no
+    // box a sixth of ct_head's frame (187 ms against 217 with the box out of
+    // view, docs/performance.md).
+    if (all(greaterThanEqual(tile, unpackTile(ray.operatorTilesLo))) &&
+        all(lessThan(tile, unpackTile(ray.operatorTilesHi))))
+        return;
+#endif
+    ivec2 pixel = ivec2(tile * gl_WorkGroupSize.xy + pixelInTile(gl_LocalInvocationID.xy));
     ivec2 size = imageSize(target);
     if (pixel.x >= size.x || pixel.y >= size.y) return;
     vec2 ndc = (vec2(pixel) + 0.5) / vec2(size) * 2.0 - 1.0;
@@ -498,74 +511,5 @@ void marchPixel(uvec2 tile, uvec2 local) {
     imageStore(target, pixel, cwCensus ? census : sum);
     imageStore(idTarget, pixel, vec4(id));
 }
-
-#ifndef CW_RAY_OPERATORS
-// Frames with operators run this shader over the image but the tiles their
-// boxes may cover (Raycaster::record). lavapipe runs every part of a shader
-// at least once per 8 rays, masked where no ray takes it: an operator's
-// resolve and shading, run so once, cost rays that meet no box a sixth of
-// ct_head's frame (187 ms against 217 with the box out of view,
-// docs/performance.md).
-bool inOperatorTiles(uvec2 tile) {
-    return all(greaterThanEqual(tile, unpackTile(ray.operatorTilesLo))) &&
-           all(lessThan(tile, unpackTile(ray.operatorTilesHi)));
-}
-#endif
-
-#ifdef CW_TILES_FROM_COUNTER
-// Tiles handed out one at a time (the shaders built for CPU devices):
-// lavapipe (Mesa 22.3, lp_cs_tpool) gives each of its threads one contiguous
-// share of a dispatch's workgroups, so a thread whose share costs less waits
-// for the other at the end of the dispatch, however the tiles are spread
-// (chest_ct: 0.80 of the frame, docs/performance.md). Here a few workgroups
-// are dispatched (Raycaster::dispatchTiles), and each takes the next tile
-// from a counter until none are left, its invocations marching the tile's
-// pixels as one workgroup per tile would: each core works until the last
-// tile. Counter 0 counts the untouched volume's dispatch, 1 the operators';
-// the host zeroes both before them. (A first version had each subgroup take
-// tiles of its own, elected and broadcast: on lavapipe it lost a few of the
-// blocks at random; tests/gpu/yield_lanes_test.cpp.)
-layout(std430, set = 0, binding = 7) buffer TileCounters {
-    uint nextTile[2];
-};
-shared uint takenTile;
-
-void main() {
-#ifdef CW_RAY_OPERATORS
-    const uint counter = 1u;
-    uvec2 first = unpackTile(ray.operatorTilesLo);
-    uvec2 tiles = unpackTile(ray.operatorTilesHi) - first;
-#else
-    const uint counter = 0u;
-    uvec2 first = uvec2(0u);
-    uvec2 tiles = (uvec2(imageSize(target)) + 7u) / 8u;
-#endif
-    uint count = tiles.x * tiles.y;
-    for (;;) {
-        if (gl_LocalInvocationIndex == 0u) takenTile = atomicAdd(nextTile[counter], 1u);
-        barrier();
-        uint taken = takenTile;
-        barrier(); // every invocation has read it before the next is taken
-        if (taken >= count) break;
-        uvec2 tile = first + uvec2(taken % tiles.x, taken / tiles.x);
-#ifndef CW_RAY_OPERATORS
-        if (inOperatorTiles(tile)) continue;
-#endif
-        marchPixel(tile, gl_LocalInvocationID.xy);
-    }
-}
-#else
-void main() {
-    // Workgroups take rows of tiles in an order that spreads each core's
-    // share over the image, and each 8 invocations a 4x2 block of pixels
-    // (shared/tile_order.h).
-    uint tileRow = tileRowOf(gl_WorkGroupID.y, gl_NumWorkGroups.y, ray.rowStride);
-    uvec2 tile = uvec2(gl_WorkGroupID.x, tileRow) + unpackTile(ray.tileOffset);
-#ifndef CW_RAY_OPERATORS
-    if (inOperatorTiles(tile)) return;
-#endif
-    marchPixel(tile, gl_LocalInvocationID.xy);
-}
-#endif
 
 #endif

@@ -58,41 +58,5 @@ TEST_F(YieldLanes, RendersTheSameImageAsLanesThatWait) {
     }
 }
 
-// The lanes' shaders also take their 8x8 tiles from a counter, a few
-// workgroups looping until none are left (CW_TILES_FROM_COUNTER), where the
-// others take one tile per workgroup: every pixel must still be marched
-// exactly once. A larger image than above, not a whole number of tiles
-// (49 x 40 tiles, the last column and row partial), rendered twice: a first
-// version that broadcast each tile within a subgroup lost a few blocks of 4x2
-// pixels to other tiles at random, about 0.4 % of the tiles of a frame.
-TEST_F(YieldLanes, TilesFromACounterCoverEveryPixelOnce) {
-    if (!ctx().computeBallots())
-        GTEST_SKIP() << ctx().deviceName() << " has no subgroup ballots in compute shaders";
-    for (const nlohmann::json& ops : {phantomOperatorCases().front(), phantomOperatorCases()[1]}) {
-        nlohmann::json doc = operatorPhantomDocument();
-        doc["operators"] = ops;
-        doc["render"]["method"] = "raycast";
-        doc["render"]["size"] = {389, 317};
-        const Scene scene = parseScene(doc, "/nonexistent", "test");
-        SCOPED_TRACE(scene.operators.empty() ? "no operator" : scene.operators[0].name);
-        const auto volume = std::make_shared<const Volume>(job::loadSceneVolume(scene));
-        const bake::GradientBaker baker(ctx());
-        const render::GpuVolume gv =
-            render::prepareVolume(ctx(), baker, volume, job::sceneWindow(scene, *volume),
-                                  std::nullopt, job::loadSceneLabels(scene, volume));
-        render::SliceRenderer renderer(ctx());
-        renderer.setYieldLanes(false);
-        const Image perWorkgroup = renderer.render(scene, gv);
-        renderer.setYieldLanes(true);
-        for (int run = 0; run < 2; ++run) {
-            const Image counted = renderer.render(scene, gv);
-            const ImageDiff d = compareImages(perWorkgroup, counted);
-            const bool cpu = ctx().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-            EXPECT_LE(d.maxAbs, cpu ? 0.0f : 1e-5f) << "run " << run << ", rms " << d.rms;
-            EXPECT_EQ(perWorkgroup.operatorIds, counted.operatorIds) << "run " << run;
-        }
-    }
-}
-
 } // namespace
 } // namespace cutaway::test
