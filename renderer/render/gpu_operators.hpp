@@ -25,7 +25,7 @@ struct GpuOperator {
     OperatorSpec spec;
     operators::WorldBox box; ///< the deformed box in the world: the operator's proxy
     gpu::Image map;
-    gpu::Image derivatives; ///< the map's, along its three axes (bake::BakedMap)
+    gpu::Image derivatives; ///< the map's, along its three axes, at half its resolution (BakedMap)
     /// Segment alignment: the feature texture over the operator's region
     /// (bake/feature_region.hpp), made from the field `regionField` (its id in
     /// FeatureFields) over `regionVoxels`; empty otherwise.

@@ -252,12 +252,13 @@ Slab operatorSlab(int mode, Resolved front, Resolved back) {
 }
 
 // The map's derivative along local axis `axis` at local point q: section
-// `axis` of the operator's `derivatives` (bake/operator_bake.hpp), clamped
-// to the section's texel centres along x as the sampler clamps y and z. One
-// fetch where a central difference of the map took two.
+// `axis` of the operator's `derivatives` (bake/operator_bake.hpp, at half
+// the map's resolution over the same box), clamped to the section's texel
+// centres along x as the sampler clamps y and z. One fetch where a central
+// difference of the map took two.
 vec4 mapDerivative(OperatorUniforms op, sampler3D derivatives, vec3 q, int axis) {
     vec3 tc = (q - op.mapLo.xyz) / (op.mapHi.xyz - op.mapLo.xyz);
-    float width = float(textureSize(derivatives, 0).x) / 3.0; // the map's texels along x
+    float width = float(textureSize(derivatives, 0).x) / 3.0; // a section's texels along x
     tc.x = (clamp(tc.x * width, 0.5, width - 0.5) + float(axis) * width) / (3.0 * width);
     return textureLod(derivatives, tc, 0.0);
 }
