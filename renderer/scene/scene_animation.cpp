@@ -77,7 +77,7 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
                                                         : Interpolation::Linear;
         t.objects(
             "keys", 1, 100000,
-            [&](JsonReader& k, std::size_t index) {
+            [&](JsonReader& k, std::size_t keyIndex) {
                 Keyframe key;
                 key.frame = k.number("frame", Range::closed(-1e6, 1e6), true).value_or(NAN);
                 if (const nlohmann::json* value = k.find("value")) {
@@ -103,7 +103,7 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
                     if (!key.value.empty() && !prev.value.empty() &&
                         (key.value.size() != prev.value.size() || key.isArray != prev.isArray))
                         k.error("value", "expected the same shape as key " +
-                                             std::to_string(index - 1) + "'s value");
+                                             std::to_string(keyIndex - 1) + "'s value");
                 }
                 track.keys.push_back(key);
             },
