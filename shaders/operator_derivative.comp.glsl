@@ -19,7 +19,7 @@
 #include "shared/operator_frame.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
-layout(set = 0, binding = 0, rgba16f) uniform readonly image3D operatorMap;
+layout(set = 0, binding = 0) uniform sampler3D operatorMap;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D derivatives;
 layout(push_constant) uniform Push { OperatorBakeParams bake; };
 
@@ -31,13 +31,14 @@ vec4 centralDifference(ivec3 t, int axis) {
     ivec3 lo = max(t - e, ivec3(0)), hi = min(t + e, dims - 1);
     float texel = (bake.mapHi[axis] - bake.mapLo[axis]) / float(dims[axis]);
     float span = float(hi[axis] - lo[axis]) * texel;
-    return span > 0.0 ? (imageLoad(operatorMap, hi) - imageLoad(operatorMap, lo)) / span
+    return span > 0.0 ? (texelFetch(operatorMap, hi, 0) - texelFetch(operatorMap, lo, 0)) / span
                       : vec4(0.0);
 }
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);
-    ivec3 halfDims = (bake.dims + 1) / 2;
+    ivec3 size = imageSize(derivatives); // bake::derivativeDims, three sections wide
+    ivec3 halfDims = ivec3(size.x / 3, size.yz);
     if (id.x >= 3 * halfDims.x || id.y >= halfDims.y || id.z >= halfDims.z) return;
     int axis = id.x / halfDims.x;
     ivec3 t = ivec3(id.x - axis * halfDims.x, id.yz);

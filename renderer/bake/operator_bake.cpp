@@ -12,25 +12,6 @@ namespace {
 constexpr VkFormat kMapFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr glm::uvec3 kGroup(8, 8, 4); // both shaders' local size
 
-void dispatch(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout,
-              VkDescriptorSet set, const shader::OperatorBakeParams& push, glm::uvec3 domain) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-    const glm::uvec3 groups = (domain + kGroup - 1u) / kGroup;
-    vkCmdDispatch(cmd, groups.x, groups.y, groups.z);
-}
-
-// Compute writes (or UNDEFINED) before, shader reads and copies after.
-void toShaderRead(VkCommandBuffer cmd, const gpu::Image& image) {
-    gpu::transition(cmd, image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                        VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                    VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
-                        VK_ACCESS_2_TRANSFER_READ_BIT);
-}
-
 } // namespace
 
 OperatorBaker::OperatorBaker(const gpu::Context& ctx) : m_ctx(ctx) {
@@ -43,15 +24,16 @@ OperatorBaker::OperatorBaker(const gpu::Context& ctx) : m_ctx(ctx) {
         gpu::createShaderModule(ctx, operator_bake_comp_spv, sizeof(operator_bake_comp_spv));
     m_pipeline = gpu::createComputePipeline(ctx, m_layout.get(), module.get());
 
-    m_derivativeSetLayout =
-        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
-                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
+    m_derivativeSetLayout = gpu::createSetLayout(
+        ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, nullptr},
+              {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
     m_derivativeLayout = gpu::createPipelineLayout(ctx, m_derivativeSetLayout.get(),
                                                    sizeof(shader::OperatorBakeParams), compute);
     auto derivative = gpu::createShaderModule(ctx, operator_derivative_comp_spv,
                                               sizeof(operator_derivative_comp_spv));
     m_derivativePipeline =
         gpu::createComputePipeline(ctx, m_derivativeLayout.get(), derivative.get());
+    m_nearest = gpu::createNearestSampler(ctx); // texelFetch: any sampler will do
 }
 
 BakedMap OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 lo, glm::vec3 hi,
@@ -70,9 +52,11 @@ BakedMap OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 lo,
     gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                               out.map.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::DescriptorSet derivativeSet = gpu::allocateDescriptorSet(
-        m_ctx, m_derivativeSetLayout.get(), {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}});
-    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                              out.map.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+        m_ctx, m_derivativeSetLayout.get(),
+        {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
+    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, 0,
+                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, out.map.view.get(),
+                              VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_nearest.get());
     gpu::writeImageDescriptor(m_ctx, derivativeSet.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                               out.derivatives.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     shader::OperatorBakeParams push{};
@@ -82,23 +66,11 @@ BakedMap OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 lo,
     push.mapLo = glm::vec4(lo, 0.0f);
     push.mapHi = glm::vec4(hi, 0.0f);
     push.dims = dims;
-    m_ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        for (const gpu::Image* image : {&out.map, &out.derivatives})
-            gpu::transition(cmd, *image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                            VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
-                            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                            VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
-        dispatch(cmd, m_pipeline.get(), m_layout.get(), set.set, push, glm::uvec3(dims));
-        // The derivatives read the map's texels the first pass wrote.
-        gpu::transition(
-            cmd, out.map, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL,
-            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
-            VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
-        dispatch(cmd, m_derivativePipeline.get(), m_derivativeLayout.get(), derivativeSet.set, push,
-                 glm::uvec3(3 * half.x, half.y, half.z));
-        toShaderRead(cmd, out.map);
-        toShaderRead(cmd, out.derivatives);
-    });
+    gpu::computeIntoImage(m_ctx, out.map, m_pipeline.get(), m_layout.get(), set.set, &push,
+                          sizeof(push), kGroup);
+    // The derivatives read the map's texels the first pass wrote.
+    gpu::computeIntoImage(m_ctx, out.derivatives, m_derivativePipeline.get(),
+                          m_derivativeLayout.get(), derivativeSet.set, &push, sizeof(push), kGroup);
     return out;
 }
 

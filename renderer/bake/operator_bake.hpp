@@ -46,6 +46,7 @@ private:
     gpu::DescriptorSetLayoutHandle m_derivativeSetLayout;
     gpu::PipelineLayoutHandle m_derivativeLayout;
     gpu::PipelineHandle m_derivativePipeline;
+    gpu::SamplerHandle m_nearest; ///< the derivatives' pass reads the map with texelFetch
 };
 
 } // namespace cutaway::bake
