@@ -16,6 +16,6 @@ layout(std140, set = 0, binding = 0) uniform Frame {
 vec4 shadeMesh() {
     vec3 toEye = u.eye.w > 0.5 ? normalize(u.eye.xyz - worldPos) : -u.viewDir.xyz;
     vec3 n = dot(worldNormal, worldNormal) > 1e-12 ? normalize(worldNormal) : toEye;
-    Lighting light = lightSurface(n, toEye, u);
+    Lighting light = lightSurface(n, viewerOf(toEye, u), u);
     return vec4(color.rgb * light.diffuse + light.specular, 1.0);
 }

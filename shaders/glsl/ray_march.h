@@ -87,6 +87,7 @@ uvec2 unpackTile(uint packed) {
 // p(k) = origin + dir * t(k) on the slicing planes.
 struct March {
     vec3 origin, dir, toEye;
+    Viewer viewer;   // viewerOf(toEye): the lights' half vectors, once per ray
     float obliquity; // 1 / cos of the angle between the ray and the view
     float spacing;   // between the planes, along the view (mm)
     float so, fd;    // the origin's and the direction's distance along the view
@@ -237,7 +238,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         if (cwCensus) census.y += 1.0;
         vec4 c = classifySlab(front, cwPreintegrated ? next : front, m.obliquity, classLayer(tc));
         vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
-        c = shade(c, gradientAt(shadeAt), m.toEye);
+        c = shade(c, gradientAt(shadeAt), m.viewer);
         composite(c, CW_ID_BACKGROUND, sum, id);
         if (sum.a >= u.termination.x) break;
         tc += tcStep;
@@ -312,7 +313,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
                 haveFront = haveFront && skip == 0.0;
             } while (skip > 0.0);
             if (k > k1) break;
-            next = resolve(op, map, feature, mode, pointAt(m, haveFront ? k + 1.0 : k));
+            next = resolve(op, map, feature, slot, mode, pointAt(m, haveFront ? k + 1.0 : k));
             if (cwCensus) census.z += 1.0;
             if (!haveFront) {
                 front = next;
@@ -331,7 +332,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
         if (!visible) continue;
         bool moved;
         if (cwCensus) census.w += 1.0;
-        vec4 c = shadeOperatorSlab(op, derivatives, feature, mode, s, pointAt(m, k), m.toEye,
+        vec4 c = shadeOperatorSlab(op, derivatives, feature, slot, mode, s, pointAt(m, k), m.viewer,
                                    m.obliquity, stepMm, moved);
         composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
         if (sum.a >= u.termination.x) break;
@@ -472,6 +473,7 @@ void main() {
     m.origin = nearH.xyz / nearH.w; // on the near plane: nothing in front of it is drawn
     m.dir = normalize(farH.xyz / farH.w - m.origin);
     m.toEye = -m.dir;
+    m.viewer = viewerOf(m.toEye, u);
     m.obliquity = obliquityOf(m.toEye);
     m.spacing = u.viewDir.w;
     m.fd = dot(u.viewDir.xyz, m.dir);

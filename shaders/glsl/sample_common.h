@@ -96,6 +96,15 @@ Trilinear trilinearAt(vec3 tc, ivec3 dims) {
     return t;
 }
 
+// The trilinear sum of a cell's eight texels: `near` the four at t.lo.z,
+// `far` those at t.hi.z, each x fastest (lo.x lo.y, hi.x lo.y, lo.x hi.y,
+// hi.x hi.y).
+float weighTexels(Trilinear t, vec4 near, vec4 far) {
+    vec4 z = mix(near, far, t.f.z);
+    vec2 y = mix(z.xy, z.zw, t.f.y);
+    return mix(y.x, y.y, t.f.x);
+}
+
 // The volume's normalized value at texture coordinate tc: trilinear, clamped
 // to the edge, as textureLod(volumeTex, tc, 0.0).r samples it. With
 // cwStorageFetch the eight texels are loaded and weighted here, in full float
@@ -109,9 +118,7 @@ float volumeAt(vec3 tc) {
                      valueTexel(ivec3(lo.x, hi.y, lo.z)), valueTexel(ivec3(hi.xy, lo.z)));
     vec4 far = vec4(valueTexel(ivec3(lo.xy, hi.z)), valueTexel(ivec3(hi.x, lo.y, hi.z)),
                     valueTexel(ivec3(lo.x, hi.yz)), valueTexel(hi));
-    vec4 z = mix(near, far, t.f.z);
-    vec2 y = mix(z.xy, z.zw, t.f.y);
-    return mix(y.x, y.y, t.f.x);
+    return weighTexels(t, near, far);
 }
 
 vec4 gradientTexel(ivec3 voxel) {
@@ -171,8 +178,8 @@ vec4 classifySlab(float front, float back, float obliquity, float layer) {
     return vec4(c.rgb * alpha, alpha);
 }
 
-vec4 shade(vec4 sampleColor, vec4 gradient, vec3 toEye) {
-    Lighting light = lightSample(gradient, toEye, u);
+vec4 shade(vec4 sampleColor, vec4 gradient, Viewer viewer) {
+    Lighting light = lightSample(gradient, viewer, u);
     return vec4(sampleColor.rgb * light.diffuse + light.specular * sampleColor.a, sampleColor.a);
 }
 
@@ -183,7 +190,7 @@ vec4 shade(vec4 sampleColor, vec4 gradient, vec3 toEye) {
 vec4 backgroundSlab(float front, float back, vec3 tc, vec3 shadeAt, vec3 toEye, float obliquity) {
     vec4 c = classifySlab(front, back, obliquity, classLayer(tc));
     if (c.a <= 0.0) return vec4(0.0);
-    return shade(c, gradientAt(shadeAt), toEye);
+    return shade(c, gradientAt(shadeAt), viewerOf(toEye, u));
 }
 
 #endif

@@ -36,15 +36,31 @@ CW_FUNC float shadingWeight(float gradientMagnitude) {
     return smoothstep(0.01f, 0.06f, gradientMagnitude);
 }
 
-// Blinn-Phong for one light. n, toLight and toEye are unit vectors; the normal
-// is flipped toward the eye first (two-sided lighting: a volume has no inside).
-// Returns (diffuse factor, specular factor) scaled by the material.
-CW_FUNC vec2 blinnPhong(vec3 n, vec3 toLight, vec3 toEye, float diffuse, float specular,
+// Where the lights are seen from: the unit vector toward the eye and each
+// directional light's Blinn-Phong half vector (the headlight's is toEye
+// itself). They depend on the view direction alone, so the ray caster takes
+// them once per ray: lavapipe (Mesa 22.3) hoists nothing out of a loop, and
+// a normalization per light per sample was a part of every shaded sample.
+struct Viewer {
+    vec3 toEye;
+    vec3 halfway[CW_MAX_LIGHTS];
+};
+
+CW_FUNC Viewer viewerOf(vec3 toEye, FrameUniforms u) {
+    Viewer v;
+    v.toEye = toEye;
+    for (int i = 0; i < CW_MAX_LIGHTS; ++i)
+        v.halfway[i] = i < CW_LIGHT_COUNT(u) ? normalize(vec3(u.lightDir[i]) + toEye) : vec3(0.0f);
+    return v;
+}
+
+// Blinn-Phong for one light: nf is the unit normal already turned toward the
+// eye (two-sided lighting: a volume has no inside), toLight and halfway unit
+// vectors. Returns (diffuse factor, specular factor) scaled by the material.
+CW_FUNC vec2 blinnPhong(vec3 nf, vec3 toLight, vec3 halfway, float diffuse, float specular,
                         float shininess) {
-    vec3 nf = dot(n, toEye) < 0.0f ? -n : n;
     float d = max(dot(nf, toLight), 0.0f);
-    vec3 h = normalize(toLight + toEye);
-    float s = d > 0.0f ? CW_SPECULAR_POWER(max(dot(nf, h), 0.0f), shininess) : 0.0f;
+    float s = d > 0.0f ? CW_SPECULAR_POWER(max(dot(nf, halfway), 0.0f), shininess) : 0.0f;
     return vec2(diffuse * d, specular * s);
 }
 
@@ -61,24 +77,25 @@ struct Lighting {
 };
 
 // Blinn-Phong with the frame's ambient, headlight and directional lights for
-// a surface of unit normal n (either side lit).
-CW_FUNC Lighting lightSurface(vec3 n, vec3 toEye, FrameUniforms u) {
+// a surface of unit normal n (either side lit), seen from `v` (viewerOf).
+CW_FUNC Lighting lightSurface(vec3 n, Viewer v, FrameUniforms u) {
+    vec3 nf = dot(n, v.toEye) < 0.0f ? -n : n;
     Lighting result;
     result.diffuse = vec3(u.material.x);
     result.specular = vec3(0.0f);
-    vec2 head = blinnPhong(n, toEye, toEye, u.material.y, u.material.z, u.material.w);
+    vec2 head = blinnPhong(nf, v.toEye, v.toEye, u.material.y, u.material.z, u.material.w);
     result.diffuse += vec3(u.headlight) * head.x;
     result.specular += vec3(u.headlight) * head.y;
     for (int i = 0; i < CW_LIGHT_COUNT(u); ++i) {
-        vec2 l =
-            blinnPhong(n, vec3(u.lightDir[i]), toEye, u.material.y, u.material.z, u.material.w);
+        vec2 l = blinnPhong(nf, vec3(u.lightDir[i]), v.halfway[i], u.material.y, u.material.z,
+                            u.material.w);
         result.diffuse += vec3(u.lightColor[i]) * l.x;
         result.specular += vec3(u.lightColor[i]) * l.y;
     }
     return result;
 }
 
-CW_FUNC Lighting lightSample(vec4 gradient, vec3 toEye, FrameUniforms u) {
+CW_FUNC Lighting lightSample(vec4 gradient, Viewer v, FrameUniforms u) {
     Lighting result;
     if (!CW_SHADING_ON(u)) { // shading off: the transfer function's colour as is
         result.diffuse = vec3(1.0f);
@@ -86,8 +103,8 @@ CW_FUNC Lighting lightSample(vec4 gradient, vec3 toEye, FrameUniforms u) {
         return result;
     }
     vec3 g = vec3(gradient);
-    vec3 n = dot(g, g) > 1e-12f ? normalize(-g) : toEye;
-    Lighting lit = lightSurface(n, toEye, u);
+    vec3 n = dot(g, g) > 1e-12f ? normalize(-g) : v.toEye;
+    Lighting lit = lightSurface(n, v, u);
     float w = shadingWeight(gradient.w);
     vec3 unlit = vec3(u.material.x) + vec3(u.headlight) * u.material.y;
     result.diffuse = mix(unlit, lit.diffuse, w);

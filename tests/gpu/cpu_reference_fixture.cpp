@@ -156,6 +156,7 @@ Image renderCpuReference(const Scene& scene, const Volume& volume) {
                 const glm::vec3 toEye =
                     cam.perspective ? glm::vec3(glm::normalize(cam.eye - p)) : -glm::vec3(f);
                 const float obliquity = 1.0f / std::max(glm::dot(-toEye, glm::vec3(f)), 1e-3f);
+                const shader::Viewer viewer = shader::viewerOf(toEye, u);
                 const double stepMm = sliceMm * obliquity;
                 const float front = cv.trilinear(cv.values, tcOf(p));
                 glm::dvec3 shadeAt = tcOf(p);
@@ -178,7 +179,7 @@ Image renderCpuReference(const Scene& scene, const Volume& volume) {
                     sampleColor = glm::vec4(glm::vec3(c) * alpha, alpha);
                 }
                 const shader::Lighting light =
-                    shader::lightSample(cv.trilinear(cv.gradients, shadeAt), toEye, u);
+                    shader::lightSample(cv.trilinear(cv.gradients, shadeAt), viewer, u);
                 const glm::vec4 shaded(glm::vec3(sampleColor) * light.diffuse +
                                            light.specular * sampleColor.w,
                                        sampleColor.w);
