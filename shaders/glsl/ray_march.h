@@ -313,7 +313,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
                 haveFront = haveFront && skip == 0.0;
             } while (skip > 0.0);
             if (k > k1) break;
-            next = resolve(op, map, feature, slot, mode, pointAt(m, haveFront ? k + 1.0 : k));
+            next = resolve(op, map, feature, mode, pointAt(m, haveFront ? k + 1.0 : k));
             if (cwCensus) census.z += 1.0;
             if (!haveFront) {
                 front = next;
@@ -332,7 +332,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
         if (!visible) continue;
         bool moved;
         if (cwCensus) census.w += 1.0;
-        vec4 c = shadeOperatorSlab(op, derivatives, feature, slot, mode, s, pointAt(m, k), m.viewer,
+        vec4 c = shadeOperatorSlab(op, derivatives, feature, mode, s, pointAt(m, k), m.viewer,
                                    m.obliquity, stepMm, moved);
         composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
         if (sum.a >= u.termination.x) break;
