@@ -265,9 +265,8 @@ vec4 mapDerivative(OperatorUniforms op, sampler3D derivatives, vec3 q, int axis)
 
 // The slab's premultiplied, shaded colour; `world` is p' (the slab's front),
 // seen from `viewer` (viewerOf), `stepMm` the slab's length along the ray
-// toward -viewer.toEye. `moved`: whether
-// the colour came from a point that moved with the operator (not the
-// feature left in place).
+// toward -viewer.toEye. `moved`: whether the colour came from a point that
+// moved with the operator (not the feature left in place).
 vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D feature, int mode,
                        Slab s, vec3 world, Viewer viewer, float obliquity, float stepMm,
                        out bool moved) {
