@@ -104,7 +104,7 @@ glm::uvec3 finishGroups(glm::ivec3 dims) {
 }
 
 /// Records the passes in order in one submission: `out` goes to GENERAL
-/// first and ends SHADER_READ_ONLY_OPTIMAL. Blocks until done.
+/// first and ends in kFeatureLayout. Blocks until done.
 void runPasses(const gpu::Context& ctx, VkPipelineLayout layout, const gpu::Image& out,
                const std::vector<Pass>& passes) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -122,12 +122,13 @@ void runPasses(const gpu::Context& ctx, VkPipelineLayout layout, const gpu::Imag
                                &pass.params);
             vkCmdDispatch(cmd, pass.groups.x, pass.groups.y, pass.groups.z);
         }
-        gpu::transition(cmd, out, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+        gpu::transition(cmd, out, VK_IMAGE_LAYOUT_GENERAL, kFeatureLayout,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                             VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT,
-                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_TRANSFER_READ_BIT);
+                        VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                            VK_ACCESS_2_TRANSFER_READ_BIT);
     });
 }
 

@@ -23,6 +23,10 @@ namespace cutaway::bake {
 
 /// The format of both feature fields.
 constexpr VkFormat kFeatureFieldFormat = VK_FORMAT_R16_SFLOAT;
+/// The layout the feature fields rest in: sampled, and read as storage images
+/// (the operator shaders load surface alignment's texels on CPU devices:
+/// shaders/glsl/operator_sample.h, featureFiltered).
+constexpr VkImageLayout kFeatureLayout = VK_IMAGE_LAYOUT_GENERAL;
 
 class FeatureBaker {
 public:
@@ -31,7 +35,7 @@ public:
     /// Surface alignment: the distance field DT. `values` is the uploaded volume
     /// texture (R16_UNORM or R8_UNORM, 3D, kValuesLayout; see bake/volume_upload.hpp).
     /// A voxel is object when its normalized value > `threshold` (0..1), else background.
-    /// Result: kFeatureFieldFormat (R16F), same extent, SHADER_READ_ONLY_OPTIMAL, usage
+    /// Result: kFeatureFieldFormat (R16F), same extent, kFeatureLayout, usage
     /// SAMPLED | STORAGE | TRANSFER_SRC: the exact Euclidean distance in mm from the voxel
     /// centre to the nearest background voxel centre (0 for background; 65504, the largest
     /// half, when there is no background voxel at all); anisotropic spacing honoured.

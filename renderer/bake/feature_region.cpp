@@ -1,5 +1,6 @@
 #include "bake/feature_region.hpp"
 
+#include "bake/feature_bake.hpp"
 #include "bake/volume_upload.hpp"
 #include "feature_region_comp.spv.h"
 #include "gpu/pipeline.hpp"
@@ -43,11 +44,10 @@ gpu::Image FeatureRegionBaker::bake(const gpu::Image& values, const gpu::Image& 
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
-    const auto ro = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                               values.view.get(), kValuesLayout, m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                              mask.view.get(), ro, m_sampler.get());
+                              mask.view.get(), kFeatureLayout, m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
                               VK_IMAGE_LAYOUT_GENERAL);
     shader::FeatureRegionParams params{};

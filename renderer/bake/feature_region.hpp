@@ -37,7 +37,7 @@ public:
     explicit FeatureRegionBaker(const gpu::Context& ctx);
 
     /// `values`: the uploaded volume (kValuesLayout); `mask`: its segment mask
-    /// (FeatureBaker::segmentMask, SHADER_READ_ONLY_OPTIMAL), on the same grid. Result: RG16F over
+    /// (FeatureBaker::segmentMask, kFeatureLayout), on the same grid. Result: RG16F over
     /// `region`, SHADER_READ_ONLY_OPTIMAL for fragment and compute shaders.
     gpu::Image bake(const gpu::Image& values, const gpu::Image& mask, VoxelRegion region) const;
 

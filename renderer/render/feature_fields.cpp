@@ -26,9 +26,10 @@ std::string number(double v) {
 
 FeatureFields::FeatureFields(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx) {
     m_none = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, bake::kFeatureFieldFormat, {1, 1, 1},
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
+                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     const uint16_t zero = 0; // one half float
-    gpu::uploadImage(ctx, m_none, &zero, sizeof zero, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+    gpu::uploadImage(ctx, m_none, &zero, sizeof zero, bake::kFeatureLayout,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT); // slicing and the ray caster
 }

@@ -86,7 +86,8 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
                                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
             op->set = gpu::allocateDescriptorSet(m_ctx, m_setLayout,
                                                  {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3}});
+                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
+                                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
             gpu::writeBufferDescriptor(m_ctx, op->set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
                                        op->uniforms.buffer.get(), sizeof(shader::OperatorUniforms));
         }
@@ -111,6 +112,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
         std::uint64_t fieldId = 0;
         const gpu::Image& field = m_features.fieldFor(spec, volume, &fieldId);
         const gpu::Image* feature = &field;
+        VkImageLayout featureLayout = bake::kFeatureLayout;
         if (spec.alignment.mode == AlignmentMode::Segment) {
             // The region the map reads: its deformed box holds p' and p0.
             const bake::VoxelRegion voxels = bake::regionCovering(
@@ -122,12 +124,16 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
                 op->regionVoxels = voxels;
             }
             feature = &op->region;
+            featureLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
         } else {
             op->region = {};
         }
         gpu::writeImageDescriptor(m_ctx, op->set.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                  feature->view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                                  m_sampler);
+                                  feature->view.get(), featureLayout, m_sampler);
+        // The field on the volume's grid again, for the shaders that load its
+        // texels (surface alignment on CPU devices; operator_sample.h).
+        gpu::writeImageDescriptor(m_ctx, op->set.set, 4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                  field.view.get(), bake::kFeatureLayout);
         op->spec = spec;
         const shader::OperatorUniforms u =
             uniformsOf(spec, op->box, i, volume, op->region, op->regionVoxels);

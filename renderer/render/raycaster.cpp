@@ -2,6 +2,8 @@
 
 #include "raycast_comp.spv.h"
 #include "raycast_lanes_comp.spv.h"
+#include "raycast_operator_comp.spv.h"
+#include "raycast_operator_lanes_comp.spv.h"
 #include "raycast_operators_comp.spv.h"
 #include "raycast_operators_lanes_comp.spv.h"
 #include "render/ray_cells.hpp"
@@ -182,8 +184,12 @@ VkPipeline Raycaster::pipelineFor(const SliceVariant& variant, const std::vector
         };
         const SliceConstants constants(first,
                                        {static_cast<uint32_t>(alignments.size()), at(1), at(2)});
-        auto module = moduleFor(m_ctx, variant.yieldLanes, raycast_operators_lanes_comp_spv,
-                                raycast_operators_comp_spv);
+        // One operator: the shader without the loop over several boxes.
+        auto module = alignments.size() == 1
+                          ? moduleFor(m_ctx, variant.yieldLanes, raycast_operator_lanes_comp_spv,
+                                      raycast_operator_comp_spv)
+                          : moduleFor(m_ctx, variant.yieldLanes, raycast_operators_lanes_comp_spv,
+                                      raycast_operators_comp_spv);
         pipeline = gpu::createComputePipeline(m_ctx, m_operatorLayout.get(), module.get(),
                                               constants.info());
     }

@@ -127,7 +127,8 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
         ctx, {{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fragOrCompute, nullptr},
               {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragOrCompute, nullptr},
               {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragOrCompute, nullptr},
-              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragOrCompute, nullptr}});
+              {3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragOrCompute, nullptr},
+              {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, fragOrCompute, nullptr}});
     m_layout = gpu::createPipelineLayout(ctx, {m_setLayout.get(), m_operatorSetLayout.get()});
     m_operators = std::make_unique<OperatorStack>(ctx, m_operatorSetLayout.get(), m_sampler.get());
     m_meshes = std::make_unique<MeshPass>(ctx, m_setLayout.get());

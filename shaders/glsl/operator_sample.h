@@ -7,7 +7,8 @@
 // the map (Eq. 5), blended with the feature's (Eq. 9, 10) and toward the
 // cut's within the band D (Eq. 7).
 //
-// Every function takes the operator it works for: its uniforms `op`, its
+// Every function takes the operator it works for: its uniforms `op`, its slot
+// (0 in the slicing shader; the ray caster's 0..CW_RAY_MAX_OPERATORS - 1), its
 // baked `map`, its `feature` field (surface: DT in mm, R16F over the volume's
 // grid; segment: RG16F over the operator's region of it, M and the value
 // moved material reads, bake/feature_region.hpp; a 1^3 texture for axis
@@ -37,6 +38,58 @@ bool inVolume(vec3 tc) {
     return all(greaterThanEqual(tc, vec3(0.0))) && all(lessThanEqual(tc, vec3(1.0)));
 }
 
+// The feature field on the volume's grid (surface alignment's DT; segment
+// alignment's M, whose region the sampled `feature` holds instead; axis
+// alignment's 1^3 zero) again as a storage image, one per operator slot: the
+// slicing shader's set 1, the ray caster's sets 1 + slot. With cwStorageFetch
+// (CPU devices) surface alignment loads its texels and filters them here, as
+// volumeAt does the values': on lavapipe a sampled R16F fetch is a call that
+// gathers its texels lane by lane.
+layout(set = 1, binding = 4, r16f) uniform readonly image3D featureImage0;
+#ifdef CW_RAY_OPERATORS
+layout(set = 2, binding = 4, r16f) uniform readonly image3D featureImage1;
+layout(set = 3, binding = 4, r16f) uniform readonly image3D featureImage2;
+#endif
+
+// Whether the feature field's texels are loaded (featureTexel) instead of
+// sampled from `feature`.
+bool featureLoaded(int mode) {
+    return cwStorageFetch != 0 && mode == CW_ALIGN_SURFACE;
+}
+
+// Slot `slot`'s feature image's size and its texel at `voxel` (within the
+// size). GLSL takes no image with a format as a parameter; each call passes
+// a constant slot, so the compiler keeps one image (as blockAt does).
+ivec3 featureImageSize(int slot) {
+#ifdef CW_RAY_OPERATORS
+    if (slot == 1) return imageSize(featureImage1);
+    if (slot == 2) return imageSize(featureImage2);
+#endif
+    return imageSize(featureImage0);
+}
+
+float featureTexel(int slot, ivec3 voxel) {
+#ifdef CW_RAY_OPERATORS
+    if (slot == 1) return imageLoad(featureImage1, voxel).r;
+    if (slot == 2) return imageLoad(featureImage2, voxel).r;
+#endif
+    return imageLoad(featureImage0, voxel).r;
+}
+
+// The feature field at feature coordinate `at`, loaded: trilinear, clamped to
+// the edge, as the sampler filters it.
+float featureFiltered(int slot, vec3 at) {
+    Trilinear t = trilinearAt(at, featureImageSize(slot));
+    ivec3 lo = t.lo, hi = t.hi;
+    vec4 near =
+        vec4(featureTexel(slot, lo), featureTexel(slot, ivec3(hi.x, lo.yz)),
+             featureTexel(slot, ivec3(lo.x, hi.y, lo.z)), featureTexel(slot, ivec3(hi.xy, lo.z)));
+    vec4 far =
+        vec4(featureTexel(slot, ivec3(lo.xy, hi.z)), featureTexel(slot, ivec3(hi.x, lo.y, hi.z)),
+             featureTexel(slot, ivec3(lo.x, hi.yz)), featureTexel(slot, hi));
+    return weighTexels(t, near, far);
+}
+
 // The feature texture's coordinate of the volume's texture coordinate tc.
 vec3 featureTcOf(OperatorUniforms op, vec3 tc) {
     return tc * op.featureTc.xyz + op.featureTc0.xyz;
@@ -45,12 +98,16 @@ vec3 featureTcOf(OperatorUniforms op, vec3 tc) {
 // M at texture coordinate tc (0 for axis alignment); `f` receives the
 // feature field there (DT or M), which featureGradient reads again, and
 // `moving` the value moved material reads there (segment alignment).
-float maskAt(OperatorUniforms op, sampler3D feature, int mode, vec3 tc, out float f,
+float maskAt(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc, out float f,
              out float moving) {
     f = 0.0;
     moving = 0.0;
     if (mode == CW_ALIGN_AXIS) return 0.0;
     vec3 at = featureTcOf(op, tc);
+    if (featureLoaded(mode)) {
+        f = featureFiltered(slot, at);
+        return surfaceMask(f, op.align.y, op.align.z);
+    }
     vec2 texel = textureLod(feature, at, 0.0).rg;
     f = texel.r;
     if (mode == CW_ALIGN_SURFACE) return surfaceMask(f, op.align.y, op.align.z);
@@ -65,10 +122,20 @@ float maskAt(OperatorUniforms op, sampler3D feature, int mode, vec3 tc, out floa
 // gradient (2 bytes a voxel instead of 8). Six texel reads cost about what the
 // RGBA16F gradient's one filtered fetch did on lavapipe; six filtered fetches
 // (a gradient that varies within a voxel) made an operator frame 30 % slower.
-vec3 featureDirection(OperatorUniforms op, sampler3D feature, vec3 tc) {
-    ivec3 dims = textureSize(feature, 0);
+vec3 featureDirection(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc) {
+    bool loaded = featureLoaded(mode);
+    ivec3 dims = loaded ? featureImageSize(slot) : textureSize(feature, 0);
     ivec3 v = clamp(ivec3(floor(featureTcOf(op, tc) * vec3(dims))), ivec3(0), dims - 1);
     ivec3 lo = max(v - 1, ivec3(0)), hi = min(v + 1, dims - 1);
+    if (loaded) {
+        vec3 below = vec3(featureTexel(slot, ivec3(lo.x, v.y, v.z)),
+                          featureTexel(slot, ivec3(v.x, lo.y, v.z)),
+                          featureTexel(slot, ivec3(v.x, v.y, lo.z)));
+        vec3 above = vec3(featureTexel(slot, ivec3(hi.x, v.y, v.z)),
+                          featureTexel(slot, ivec3(v.x, hi.y, v.z)),
+                          featureTexel(slot, ivec3(v.x, v.y, hi.z)));
+        return featureGradientOf(below, above, op.featureScale.xyz);
+    }
     vec3 below = vec3(texelFetch(feature, ivec3(lo.x, v.y, v.z), 0).r,
                       texelFetch(feature, ivec3(v.x, lo.y, v.z), 0).r,
                       texelFetch(feature, ivec3(v.x, v.y, lo.z), 0).r);
@@ -95,15 +162,16 @@ struct Resolved {
 // alignment a point that moves reads the feature texture's value instead
 // (the segment's own values taken out; feature_bake.h, movedValue), which
 // the mask's fetch at p0 brings along.
-Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int mode, vec3 world) {
+Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int slot, int mode,
+                 vec3 world) {
     vec4 p0 = probe(op, map, world);
     vec3 tc0 = toTexture(p0.xyz);
     vec3 tcPrime = toTexture(world);
     bool p0Valid = p0.w > 0.0 && inVolume(tc0);
     bool primeIn = inVolume(tcPrime);
     float f0, fPrime, moving0, movingPrime;
-    float m0 = maskAt(op, feature, mode, tc0, f0, moving0);
-    float mPrime = maskAt(op, feature, mode, tcPrime, fPrime, movingPrime);
+    float m0 = maskAt(op, feature, slot, mode, tc0, f0, moving0);
+    float mPrime = maskAt(op, feature, slot, mode, tcPrime, fPrime, movingPrime);
     Resolved r;
     r.which = featureCase(p0Valid, p0Valid ? m0 : 0.0, primeIn, primeIn ? mPrime : 0.0);
     bool masked = r.which == CW_CASE_MASKED;
@@ -137,13 +205,13 @@ float breakWeight(OperatorUniforms op, Resolved r) {
 // The source-space gradient at p (data gradient, with Eq. 9 / 10 applied);
 // f is the feature field at p, whose texture coordinate is tc; `weight` the
 // break's (breakWeight).
-vec4 featureGradient(OperatorUniforms op, sampler3D feature, int mode, vec4 g, float f, vec3 tc,
-                     bool moved, float weight) {
+vec4 featureGradient(OperatorUniforms op, sampler3D feature, int slot, int mode, vec4 g, float f,
+                     vec3 tc, bool moved, float weight) {
     if (mode == CW_ALIGN_AXIS) return g;
     if (mode == CW_ALIGN_SURFACE) {
         float beta = weight * surfaceBeta(f, op.align.y, op.align.z);
         if (beta == 0.0) return g;
-        return vec4(surfaceNormal(g.xyz, featureDirection(op, feature, tc), beta),
+        return vec4(surfaceNormal(g.xyz, featureDirection(op, feature, slot, mode, tc), beta),
                     mix(g.w, 1.0, abs(beta)));
     }
     // Segment: only moved points (M < 0.5) change. Near the segment the data
@@ -152,7 +220,8 @@ vec4 featureGradient(OperatorUniforms op, sampler3D feature, int mode, vec4 g, f
     float m = f;
     float gamma = segmentGamma(m);
     if (!moved || gamma == 0.0) return g;
-    vec3 toward = mix(g.xyz, featureDirection(op, feature, tc), clamp(2.0 * m, 0.0, 1.0));
+    vec3 toward =
+        mix(g.xyz, featureDirection(op, feature, slot, mode, tc), clamp(2.0 * m, 0.0, 1.0));
     return vec4(segmentNormal(toward, gamma), mix(g.w, 1.0, clamp(2.0 * m, 0.0, 1.0)));
 }
 
@@ -267,8 +336,8 @@ vec4 mapDerivative(OperatorUniforms op, sampler3D derivatives, vec3 q, int axis)
 // seen from `viewer` (viewerOf), `stepMm` the slab's length along the ray
 // toward -viewer.toEye. `moved`: whether the colour came from a point that
 // moved with the operator (not the feature left in place).
-vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D feature, int mode,
-                       Slab s, vec3 world, Viewer viewer, float obliquity, float stepMm,
+vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D feature, int slot,
+                       int mode, Slab s, vec3 world, Viewer viewer, float obliquity, float stepMm,
                        out bool moved) {
     moved = false;
     if (s.empty) return vec4(0.0);
@@ -281,7 +350,7 @@ vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D fea
 
     // One gradient fetch and one feature gradient for both cases below: on
     // SIMD CPUs both sides of a branch run, so a call in each would cost twice.
-    vec4 g = featureGradient(op, feature, mode, gradientAt(s.middle.tc), s.middle.feature,
+    vec4 g = featureGradient(op, feature, slot, mode, gradientAt(s.middle.tc), s.middle.feature,
                              s.middle.tc, !masked, breakWeight(op, s.middle));
     if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
         vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);

@@ -21,6 +21,11 @@
 // splits into runs of samples: those in an operator's deformed box (the
 // operator's proxy; the boxes do not overlap) take that operator's slabs,
 // the others the untouched volume's, as slicing's stencil decides.
+// raycast_operator.comp.glsl (and its _lanes twin) defines
+// CW_RAY_ONE_OPERATOR too: the shader for one operator, without the loop
+// over two or three boxes. lavapipe keeps every shader's NIR, dead code and
+// all, as long as its pipeline lives; that loop's three copies of the
+// operator's code took 25-38 MiB of the frog's peak (docs/performance.md).
 #ifndef CUTAWAY_RAY_MARCH_H
 #define CUTAWAY_RAY_MARCH_H
 
@@ -313,7 +318,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
                 haveFront = haveFront && skip == 0.0;
             } while (skip > 0.0);
             if (k > k1) break;
-            next = resolve(op, map, feature, mode, pointAt(m, haveFront ? k + 1.0 : k));
+            next = resolve(op, map, feature, slot, mode, pointAt(m, haveFront ? k + 1.0 : k));
             if (cwCensus) census.z += 1.0;
             if (!haveFront) {
                 front = next;
@@ -332,7 +337,7 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
         if (!visible) continue;
         bool moved;
         if (cwCensus) census.w += 1.0;
-        vec4 c = shadeOperatorSlab(op, derivatives, feature, mode, s, pointAt(m, k), m.viewer,
+        vec4 c = shadeOperatorSlab(op, derivatives, feature, slot, mode, s, pointAt(m, k), m.viewer,
                                    m.obliquity, stepMm, moved);
         composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
         if (sum.a >= u.termination.x) break;
@@ -411,7 +416,9 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
             operatorRun(slots.ops[0], map0, derivatives0, feature0, 0, cwAlignment, m, box0.x,
                         box0.y, sum, id);
         if (sum.a < u.termination.x) backgroundRun(m, max(after, volume.x), volume.y, sum, id);
-    } else {
+    }
+#ifndef CW_RAY_ONE_OPERATOR
+    else {
         // Each pass: the untouched volume up to the next box, then that box
         // (as many passes as boxes the ray meets, plus one).
         float k = samples.x;
@@ -443,6 +450,7 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
             k = end + 1.0;
         }
     }
+#endif
 }
 #endif
 

@@ -96,6 +96,15 @@ Trilinear trilinearAt(vec3 tc, ivec3 dims) {
     return t;
 }
 
+// The trilinear sum of a cell's eight texels: `near` the four at t.lo.z,
+// `far` those at t.hi.z, each x fastest (lo.x lo.y, hi.x lo.y, lo.x hi.y,
+// hi.x hi.y).
+float weighTexels(Trilinear t, vec4 near, vec4 far) {
+    vec4 z = mix(near, far, t.f.z);
+    vec2 y = mix(z.xy, z.zw, t.f.y);
+    return mix(y.x, y.y, t.f.x);
+}
+
 // The volume's normalized value at texture coordinate tc: trilinear, clamped
 // to the edge, as textureLod(volumeTex, tc, 0.0).r samples it. With
 // cwStorageFetch the eight texels are loaded and weighted here, in full float
@@ -109,9 +118,7 @@ float volumeAt(vec3 tc) {
                      valueTexel(ivec3(lo.x, hi.y, lo.z)), valueTexel(ivec3(hi.xy, lo.z)));
     vec4 far = vec4(valueTexel(ivec3(lo.xy, hi.z)), valueTexel(ivec3(hi.x, lo.y, hi.z)),
                     valueTexel(ivec3(lo.x, hi.yz)), valueTexel(hi));
-    vec4 z = mix(near, far, t.f.z);
-    vec2 y = mix(z.xy, z.zw, t.f.y);
-    return mix(y.x, y.y, t.f.x);
+    return weighTexels(t, near, far);
 }
 
 vec4 gradientTexel(ivec3 voxel) {

@@ -18,12 +18,12 @@ void main() {
     vec3 toEye = toEyeFrom(worldPos);
     float obliquity = obliquityOf(toEye);
     float stepMm = u.viewDir.w * obliquity;
-    Resolved front = resolve(op, operatorMap, featureTex, cwAlignment, worldPos);
+    Resolved front = resolve(op, operatorMap, featureTex, 0, cwAlignment, worldPos);
     Resolved back = front; // post-classified slices have no back
     if (cwPreintegrated)
-        back = resolve(op, operatorMap, featureTex, cwAlignment, worldPos - toEye * stepMm);
+        back = resolve(op, operatorMap, featureTex, 0, cwAlignment, worldPos - toEye * stepMm);
     bool moved;
-    vec4 c = shadeOperatorSlab(op, operatorDerivatives, featureTex, cwAlignment,
+    vec4 c = shadeOperatorSlab(op, operatorDerivatives, featureTex, 0, cwAlignment,
                                operatorSlab(cwAlignment, front, back), worldPos, viewerOf(toEye, u),
                                obliquity, stepMm, moved);
     emit(c, moved ? op.band.y : CW_ID_BACKGROUND);

@@ -81,8 +81,7 @@ gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& objec
 /// R16F texels back as floats.
 std::vector<float> downloadField(const gpu::Context& ctx, const gpu::Image& image) {
     EXPECT_EQ(image.format, VK_FORMAT_R16_SFLOAT);
-    std::vector<std::byte> bytes =
-        gpu::downloadImage(ctx, image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 2);
+    std::vector<std::byte> bytes = gpu::downloadImage(ctx, image, bake::kFeatureLayout, 2);
     std::vector<float> out(bytes.size() / 2);
     const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
     for (std::size_t i = 0; i < out.size(); ++i)

@@ -194,8 +194,7 @@ TEST_F(FeatureFieldsTest, SurfaceFieldIsTheDistanceToTheOutside) {
     spec.alignment.mode = AlignmentMode::Surface;
     spec.alignment.threshold = 30.0;
     const gpu::Image& field = fields.fieldFor(spec, volume);
-    const auto bytes =
-        gpu::downloadImage(ctx(), field, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 2);
+    const auto bytes = gpu::downloadImage(ctx(), field, bake::kFeatureLayout, 2);
     const std::vector<float> expected = bake::distanceFieldCpu(
         objectMask(phantom.values, 30.0), phantom.values.dims, glm::dvec3(1.0));
     const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
@@ -218,7 +217,7 @@ TEST_F(FeatureFieldsTest, SegmentFieldIsTheMaskOfItsLabelsOrValues) {
     render::FeatureFields fields(ctx());
     const bake::FeatureBaker baker(ctx());
     const auto download = [&](const gpu::Image& image) {
-        return gpu::downloadImage(ctx(), image, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 2);
+        return gpu::downloadImage(ctx(), image, bake::kFeatureLayout, 2);
     };
     OperatorSpec spec;
     spec.name = "the peeler";

@@ -59,9 +59,9 @@ TEST_F(MovedOffSegment, RegionTextureMatchesItsCpuTwin) {
     const bake::VoxelRegion region{{3, 5, 7}, {30, 33, 29}};
     const gpu::Image texture = bake::FeatureRegionBaker(ctx()).bake(volume.values, mask, region);
 
-    const auto layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    const auto maskBytes = gpu::downloadImage(ctx(), mask, layout, 2);
-    const auto regionBytes = gpu::downloadImage(ctx(), texture, layout, 4);
+    const auto maskBytes = gpu::downloadImage(ctx(), mask, bake::kFeatureLayout, 2);
+    const auto regionBytes =
+        gpu::downloadImage(ctx(), texture, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 4);
     const auto* m = reinterpret_cast<const std::uint16_t*>(maskBytes.data());
     const auto* rg = reinterpret_cast<const std::uint16_t*>(regionBytes.data());
     const std::vector<std::uint16_t> normalized = bake::normalizeVolume(scan, window);

@@ -6,7 +6,11 @@
 // where the shader weighs in float, so an R8 volume's images differ a little
 // (and must: the same image to the bit would mean the storage path never
 // ran); an R16 volume's agree closely. Both methods, with and without an
-// operator, both formats.
+// operator, both formats. The surface-aligned operator's distance field is
+// loaded and filtered too (operator_sample.h's featureFiltered, and its six
+// texels for the feature's direction): a filter with two axes swapped, or
+// the direction's neighbours taken along the wrong axes, fails the R16 case
+// (checked by breaking each once).
 #include "bake/gradient_bake.hpp"
 #include "gpu_fixture.hpp"
 #include "job/render_job.hpp"

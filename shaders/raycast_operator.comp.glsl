@@ -1,0 +1,7 @@
+#version 460
+// The ray caster for scenes with one operator (glsl/ray_march.h): the
+// shader with operators, without the loop that walks two or three boxes.
+#extension GL_GOOGLE_include_directive : require
+#define CW_RAY_OPERATORS
+#define CW_RAY_ONE_OPERATOR
+#include "glsl/ray_march.h"
