@@ -87,7 +87,14 @@ float featureFiltered(int slot, vec3 at) {
     vec4 far =
         vec4(featureTexel(slot, ivec3(lo.xy, hi.z)), featureTexel(slot, ivec3(hi.x, lo.y, hi.z)),
              featureTexel(slot, ivec3(lo.x, hi.yz)), featureTexel(slot, hi));
-    return weighTexels(t, near, far);
+    return weighTexels(t.f, near, far);
+}
+
+// The feature field's texel at `voxel`: loaded (featureTexel) or fetched
+// from `feature`, as featureLoaded says for `mode`.
+float featureVoxel(sampler3D feature, int slot, int mode, ivec3 voxel) {
+    if (featureLoaded(mode)) return featureTexel(slot, voxel);
+    return texelFetch(feature, voxel, 0).r;
 }
 
 // The feature texture's coordinate of the volume's texture coordinate tc.
@@ -123,25 +130,15 @@ float maskAt(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc
 // RGBA16F gradient's one filtered fetch did on lavapipe; six filtered fetches
 // (a gradient that varies within a voxel) made an operator frame 30 % slower.
 vec3 featureDirection(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc) {
-    bool loaded = featureLoaded(mode);
-    ivec3 dims = loaded ? featureImageSize(slot) : textureSize(feature, 0);
+    ivec3 dims = featureLoaded(mode) ? featureImageSize(slot) : textureSize(feature, 0);
     ivec3 v = clamp(ivec3(floor(featureTcOf(op, tc) * vec3(dims))), ivec3(0), dims - 1);
     ivec3 lo = max(v - 1, ivec3(0)), hi = min(v + 1, dims - 1);
-    if (loaded) {
-        vec3 below = vec3(featureTexel(slot, ivec3(lo.x, v.y, v.z)),
-                          featureTexel(slot, ivec3(v.x, lo.y, v.z)),
-                          featureTexel(slot, ivec3(v.x, v.y, lo.z)));
-        vec3 above = vec3(featureTexel(slot, ivec3(hi.x, v.y, v.z)),
-                          featureTexel(slot, ivec3(v.x, hi.y, v.z)),
-                          featureTexel(slot, ivec3(v.x, v.y, hi.z)));
-        return featureGradientOf(below, above, op.featureScale.xyz);
-    }
-    vec3 below = vec3(texelFetch(feature, ivec3(lo.x, v.y, v.z), 0).r,
-                      texelFetch(feature, ivec3(v.x, lo.y, v.z), 0).r,
-                      texelFetch(feature, ivec3(v.x, v.y, lo.z), 0).r);
-    vec3 above = vec3(texelFetch(feature, ivec3(hi.x, v.y, v.z), 0).r,
-                      texelFetch(feature, ivec3(v.x, hi.y, v.z), 0).r,
-                      texelFetch(feature, ivec3(v.x, v.y, hi.z), 0).r);
+    vec3 below = vec3(featureVoxel(feature, slot, mode, ivec3(lo.x, v.y, v.z)),
+                      featureVoxel(feature, slot, mode, ivec3(v.x, lo.y, v.z)),
+                      featureVoxel(feature, slot, mode, ivec3(v.x, v.y, lo.z)));
+    vec3 above = vec3(featureVoxel(feature, slot, mode, ivec3(hi.x, v.y, v.z)),
+                      featureVoxel(feature, slot, mode, ivec3(v.x, hi.y, v.z)),
+                      featureVoxel(feature, slot, mode, ivec3(v.x, v.y, hi.z)));
     return featureGradientOf(below, above, op.featureScale.xyz);
 }
 

@@ -96,13 +96,13 @@ Trilinear trilinearAt(vec3 tc, ivec3 dims) {
     return t;
 }
 
-// The trilinear sum of a cell's eight texels: `near` the four at t.lo.z,
-// `far` those at t.hi.z, each x fastest (lo.x lo.y, hi.x lo.y, lo.x hi.y,
-// hi.x hi.y).
-float weighTexels(Trilinear t, vec4 near, vec4 far) {
-    vec4 z = mix(near, far, t.f.z);
-    vec2 y = mix(z.xy, z.zw, t.f.y);
-    return mix(y.x, y.y, t.f.x);
+// The trilinear sum of a cell's eight texels with weights `f` toward its hi
+// corner (Trilinear.f): `near` the four at lo.z, `far` those at hi.z, each x
+// fastest (lo.x lo.y, hi.x lo.y, lo.x hi.y, hi.x hi.y).
+float weighTexels(vec3 f, vec4 near, vec4 far) {
+    vec4 z = mix(near, far, f.z);
+    vec2 y = mix(z.xy, z.zw, f.y);
+    return mix(y.x, y.y, f.x);
 }
 
 // The volume's normalized value at texture coordinate tc: trilinear, clamped
@@ -118,7 +118,7 @@ float volumeAt(vec3 tc) {
                      valueTexel(ivec3(lo.x, hi.y, lo.z)), valueTexel(ivec3(hi.xy, lo.z)));
     vec4 far = vec4(valueTexel(ivec3(lo.xy, hi.z)), valueTexel(ivec3(hi.x, lo.y, hi.z)),
                     valueTexel(ivec3(lo.x, hi.yz)), valueTexel(hi));
-    return weighTexels(t, near, far);
+    return weighTexels(t.f, near, far);
 }
 
 vec4 gradientTexel(ivec3 voxel) {
