@@ -1,5 +1,6 @@
 #include "dataset_bench.hpp"
 
+#include "bake/feature_ranges.hpp"
 #include "bake/feature_region.hpp"
 #include "bake/operator_bake.hpp"
 #include "bench_util.hpp"
@@ -86,6 +87,18 @@ nlohmann::json bakeTimes(const gpu::Context& ctx, const DatasetEntry& entry,
         (void)render::rayCells(cellSpans, visible);
     });
     bakes["distance_field_ms"] = featureMs("surface");
+    if (entry.alignments.count("surface")) {
+        // The distance field's ranges over the ray caster's cells, which its
+        // operator's empty-space skipping reads (bake/feature_ranges.hpp),
+        // once per field.
+        const Scene s = loadScene(entry.scene, rowSettings(entry, "surface", 1.0, o));
+        render::FeatureFields fields(ctx);
+        const gpu::Image& field = fields.fieldFor(s.operators.at(0), gv);
+        const bake::FieldRangeBaker ranges(ctx);
+        bakes["field_ranges_ms"] = medianMs(o.bakeRepeats, [&] {
+            (void)ranges.ranges(field, render::kRayCellVoxels, 2.0f); // steps of 0.5 mm
+        });
+    }
     bakes["segment_mask_ms"] = featureMs("segment");
     if (entry.alignments.count("segment")) {
         // What moving a segment-aligned operator costs: its region of the

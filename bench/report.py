@@ -40,10 +40,10 @@ def frame_rows(records):
 
 
 def bake_rows(records):
-    out = ["| dataset | read | upload | gradients | distance field | segment mask |"
+    out = ["| dataset | read | upload | gradients | distance field | its ranges | segment mask |"
            " segment region | operator map | value spans | new transfer | peak RSS MiB, one render (largest row) |"
            " peak RSS MiB, whole run | of it Vulkan MiB | goal MiB (4 x scan + 300) |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     seen = set()
     for r in records:
         if r.get("renderer") != "cutaway" or "bake_ms" not in r or r["dataset"] in seen:
@@ -52,6 +52,7 @@ def bake_rows(records):
         b = r["bake_ms"]
         out.append(f"| {r['dataset']} | {ms(b.get('read_ms'))} | {ms(b.get('upload_ms'))} |"
                    f" {ms(b.get('gradients_ms'))} | {ms(b.get('distance_field_ms'))} |"
+                   f" {ms(b.get('field_ranges_ms'))} |"
                    f" {ms(b.get('segment_mask_ms'))} | {ms(b.get('segment_region_ms'))} |"
                    f" {ms(b.get('operator_map_ms'))} |"
                    f" {ms(b.get('value_spans_ms'))} | {ms(b.get('classify_ms'))} |"

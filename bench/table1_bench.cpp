@@ -86,29 +86,32 @@ void printFrames(const json& records) {
 
 void printBakes(const json& records) {
     std::printf(
-        "\n| dataset | read ms | upload ms | gradients ms | distance field ms | segment "
+        "\n| dataset | read ms | upload ms | gradients ms | distance field ms | its ranges ms | "
+        "segment "
         "mask ms | segment region ms | operator map ms | value spans ms | new transfer ms | peak "
         "RSS MiB, one "
         "render (largest row) | peak RSS MiB, whole run | of it Vulkan MiB | goal MiB (4 x scan "
-        "+ 300) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+        "+ 300) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::string last;
     for (const json& r : records) {
         if (r.value("kind", "") == "turntable" || !r.contains("bake_ms") || r["dataset"] == last)
             continue;
         last = r["dataset"];
         const json& b = r["bake_ms"];
-        std::printf(
-            "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %.0f | %.0f | %.0f |\n",
-            last.c_str(), msText(b["read_ms"]).c_str(), msText(b["upload_ms"]).c_str(),
-            msText(b["gradients_ms"]).c_str(), msText(b.value("distance_field_ms", json())).c_str(),
-            msText(b.value("segment_mask_ms", json())).c_str(),
-            msText(b.value("segment_region_ms", json())).c_str(),
-            msText(b.value("operator_map_ms", json())).c_str(),
-            msText(b.value("value_spans_ms", json())).c_str(),
-            msText(b.value("classify_ms", json())).c_str(),
-            r.value("render_peak_rss_mib_largest", 0.0),
-            r["peak_rss_mib"].is_number() ? r["peak_rss_mib"].get<double>() : 0.0,
-            r.value("device_peak_mib", 0.0), r["memory_goal_mib"].get<double>());
+        std::printf("| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %.0f | %.0f | "
+                    "%.0f |\n",
+                    last.c_str(), msText(b["read_ms"]).c_str(), msText(b["upload_ms"]).c_str(),
+                    msText(b["gradients_ms"]).c_str(),
+                    msText(b.value("distance_field_ms", json())).c_str(),
+                    msText(b.value("field_ranges_ms", json())).c_str(),
+                    msText(b.value("segment_mask_ms", json())).c_str(),
+                    msText(b.value("segment_region_ms", json())).c_str(),
+                    msText(b.value("operator_map_ms", json())).c_str(),
+                    msText(b.value("value_spans_ms", json())).c_str(),
+                    msText(b.value("classify_ms", json())).c_str(),
+                    r.value("render_peak_rss_mib_largest", 0.0),
+                    r["peak_rss_mib"].is_number() ? r["peak_rss_mib"].get<double>() : 0.0,
+                    r.value("device_peak_mib", 0.0), r["memory_goal_mib"].get<double>());
     }
 }
 

@@ -24,7 +24,8 @@ std::string number(double v) {
 
 } // namespace
 
-FeatureFields::FeatureFields(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx) {
+FeatureFields::FeatureFields(const gpu::Context& ctx)
+    : m_ctx(ctx), m_baker(ctx), m_rangeBaker(ctx) {
     m_none = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, bake::kFeatureFieldFormat, {1, 1, 1},
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
                                   VK_IMAGE_USAGE_TRANSFER_DST_BIT);
@@ -127,9 +128,23 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     std::snprintf(took, sizeof took, "%.2f", seconds);
     m_notes.push_back(spec.name + ": " + note + ", baked in " + took + " s");
     ++m_bakes;
-    const Field& made = m_fields.emplace(k, Field{std::move(field), m_nextId++}).first->second;
+    // DT in mm, to 63.5 mm (a depth tau further in is not skipped by); M in [0, 1].
+    const float rangeScale = a.mode == AlignmentMode::Surface ? 2.0f : 100.0f;
+    const Field& made =
+        m_fields.emplace(k, Field{std::move(field), m_nextId++, rangeScale, std::nullopt})
+            .first->second;
     if (id) *id = made.id;
     return made.image;
+}
+
+const bake::FieldRanges* FeatureFields::rangesOf(std::uint64_t id, int cellVoxels) {
+    for (auto& [key, field] : m_fields) {
+        if (field.id != id) continue;
+        if (!field.ranges || field.ranges->cellVoxels != cellVoxels)
+            field.ranges = m_rangeBaker.ranges(field.image, cellVoxels, field.rangeScale);
+        return &*field.ranges;
+    }
+    return nullptr;
 }
 
 std::vector<std::string> FeatureFields::takeNotes() {

@@ -5,6 +5,7 @@
 // the volume and the inputs it came from (threshold; labels or range, band)
 // stay the same, so moving or animating an operator does not bake again.
 #include "bake/feature_bake.hpp"
+#include "bake/feature_ranges.hpp"
 #include "render/gpu_volume.hpp"
 #include "scene/scene.hpp"
 
@@ -27,6 +28,13 @@ public:
     /// this object made (0: the 1^3 texture).
     const gpu::Image& fieldFor(const OperatorSpec& spec, const GpuVolume& volume,
                                std::uint64_t* id = nullptr);
+
+    /// The ranges of the field whose id fieldFor gave, over cells of
+    /// `cellVoxels`^3 voxels (bake/feature_ranges.hpp): made on first use and
+    /// kept with the field. Null for id 0 (axis alignment) or an id no longer
+    /// kept. Surface alignment's in steps of half a millimetre, segment
+    /// alignment's in steps of 0.01 of M.
+    const bake::FieldRanges* rangesOf(std::uint64_t id, int cellVoxels);
 
     /// Frees the fields none of `specs` reads. Called once per frame before
     /// fieldFor, so a field no longer wanted is gone before a new one bakes
@@ -54,12 +62,15 @@ private:
 
     const gpu::Context& m_ctx;
     bake::FeatureBaker m_baker;
+    bake::FieldRangeBaker m_rangeBaker;
     gpu::Image m_none;
     std::uint64_t m_serial = 0;
     std::optional<double> m_otsu;
     struct Field {
         gpu::Image image;
         std::uint64_t id = 0;
+        float rangeScale = 1.0f; ///< the ranges' steps per unit of the field
+        std::optional<bake::FieldRanges> ranges;
     };
     std::map<std::string, Field> m_fields;
     std::uint64_t m_nextId = 1;

@@ -111,6 +111,7 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
         }
         std::uint64_t fieldId = 0;
         const gpu::Image& field = m_features.fieldFor(spec, volume, &fieldId);
+        op->fieldId = fieldId;
         const gpu::Image* feature = &field;
         VkImageLayout featureLayout = bake::kFeatureLayout;
         if (spec.alignment.mode == AlignmentMode::Segment) {

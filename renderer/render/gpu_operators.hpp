@@ -32,6 +32,8 @@ struct GpuOperator {
     gpu::Image region;
     bake::VoxelRegion regionVoxels;
     std::uint64_t regionField = 0;
+    /// The id of the feature field it reads (FeatureFields::fieldFor; 0 for axis alignment).
+    std::uint64_t fieldId = 0;
     gpu::Buffer uniforms;
     gpu::DescriptorSet set;
 };

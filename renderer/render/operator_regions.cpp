@@ -57,7 +57,7 @@ double coverage(const std::vector<operators::LocalBox>& regions, const operators
 }
 
 OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBox& box,
-                              const BrickOccupancy& occupancy, double reachMm) {
+                              const CaseOccupancy& cases, double reachMm) {
     const glm::ivec3 res = spec.resolution;
     const glm::dvec3 lo = box.local.lo, hi = box.local.hi;
     const glm::dvec3 texel = (hi - lo) / glm::dvec3(res);
@@ -70,9 +70,7 @@ OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBo
     const glm::dvec3 reach(reachMm / glm::length(axes[0]), reachMm / glm::length(axes[1]),
                            reachMm / glm::length(axes[2]));
     // Rounding of the half-float map and of the sampler: half a voxel.
-    const double pad =
-        glm::min(occupancy.brickMm.x, glm::min(occupancy.brickMm.y, occupancy.brickMm.z)) /
-        double(kBrickVoxels) * 0.5;
+    const double pad = cases.voxelMm() * 0.5;
 
     const glm::ivec3 blocks = (res + (kOperatorBlockTexels - 1)) / kOperatorBlockTexels;
     OperatorBlocks result{blocks,
@@ -88,9 +86,9 @@ OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBo
                 const glm::dvec3 blockHi =
                     glm::min(hi, lo + glm::dvec3((b + 1) * kOperatorBlockTexels) * texel);
                 const glm::dvec3 spanLo = blockLo - reach, spanHi = blockHi + reach;
-                // p' itself: a feature point, or the volume beyond the map's reach.
+                // p' itself: a feature point left in place.
                 const Box prime = worldBounds(box.localToWorld, spanLo, spanHi);
-                if (occupancy.anyIn(prime.lo - pad, prime.hi + pad)) {
+                if (cases.keptMayShow(prime.lo - pad, prime.hi + pad)) {
                     active[index] = 1;
                     continue;
                 }
@@ -112,7 +110,7 @@ OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBo
                 if (!exists) continue; // all cut: no pre-image anywhere in the block
                 const Box source = worldBounds(box.localToWorld, spanLo + glm::dvec3(dLo),
                                                spanHi + glm::dvec3(dHi));
-                active[index] = occupancy.anyIn(source.lo - pad, source.hi + pad) ? 1 : 0;
+                active[index] = cases.movedMayShow(source.lo - pad, source.hi + pad) ? 1 : 0;
             }
 
     return result;
@@ -133,7 +131,7 @@ std::vector<operators::LocalBox> operatorRegions(const OperatorBlocks& blocks,
 std::vector<operators::LocalBox> operatorRegions(const OperatorSpec& spec,
                                                  const operators::WorldBox& box,
                                                  const BrickOccupancy& occupancy, double reachMm) {
-    return operatorRegions(operatorBlocks(spec, box, occupancy, reachMm), box, spec);
+    return operatorRegions(operatorBlocks(spec, box, CaseOccupancy(occupancy), reachMm), box, spec);
 }
 
 } // namespace cutaway::render

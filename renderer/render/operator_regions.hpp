@@ -6,12 +6,15 @@
 // a trilinear blend of the eight corner texels' displacements, so it lies in
 // the cell moved by the corners' smallest and largest displacement; and p0
 // exists only if some corner lies outside a cut (w > 0). A cell where neither
-// box meets an occupied brick draws nothing. The other cells, grown by the
+// box can show its case (CaseOccupancy: p' where a point is left in place,
+// p0 where material moves; both wherever a brick is occupied unless the
+// feature field's ranges say more) draws nothing. The other cells, grown by the
 // reach of a slab (the shader also resolves the slab's back and middle), are
 // merged into boxes of the operator's local frame: only these run the operator
 // shader, while a cheap stencil-only pass still marks the whole box so the
 // untouched volume is never drawn inside it.
 #include "operators/operator_geometry.hpp"
+#include "render/case_occupancy.hpp"
 #include "render/occupancy.hpp"
 #include "scene/scene.hpp"
 
@@ -32,14 +35,15 @@ constexpr int kOperatorBlockTexels = 2;
 
 /// The operator's box cut into blocks of kOperatorBlockTexels^3 map texels
 /// (the last ones partial): a block is active where the operator shader can
-/// produce a visible sample at a point of it, given the volume's occupancy
-/// and `reachMm` (how far from its point a sample reads: a slab's length).
+/// produce a visible sample at a point of it, given where each case of Eq. 4
+/// can show something (`cases`) and `reachMm` (how far from its point a
+/// sample reads: a slab's length).
 struct OperatorBlocks {
     glm::ivec3 dims{0};
     std::vector<uint8_t> active; ///< per block, x fastest: 1 active
 };
 OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBox& box,
-                              const BrickOccupancy& occupancy, double reachMm);
+                              const CaseOccupancy& cases, double reachMm);
 
 /// The active blocks merged into boxes of the operator's local frame.
 std::vector<operators::LocalBox> operatorRegions(const OperatorBlocks& blocks,

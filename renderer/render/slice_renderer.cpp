@@ -225,8 +225,11 @@ const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuV
 
 SliceRenderer::Regions& SliceRenderer::regionsFor(std::size_t index, const GpuOperator& op,
                                                   double reachMm) {
-    // What the regions depend on: the occupancy, the map and where it lies.
-    std::vector<double> key{double(m_occupancySerial), reachMm};
+    // What the regions depend on: the occupancy, the feature field and the
+    // mask's threshold, the map and where it lies.
+    const Alignment& alignment = op.spec.alignment;
+    std::vector<double> key{double(m_occupancySerial), reachMm, double(op.fieldId),
+                            double(alignmentCode(alignment.mode)), alignment.depth};
     const auto add = [&](const float* v, std::size_t n) { key.insert(key.end(), v, v + n); };
     add(&op.spec.params.a.x, sizeof op.spec.params / sizeof(float));
     for (int c = 0; c < 4; ++c)
@@ -237,13 +240,39 @@ SliceRenderer::Regions& SliceRenderer::regionsFor(std::size_t index, const GpuOp
                    {op.box.local.lo[a], op.box.local.hi[a], double(op.spec.resolution[a])});
     if (m_regions.size() <= index) m_regions.resize(index + 1);
     Regions& r = m_regions[index];
-    if (r.key != key) {
-        r.blocks = operatorBlocks(op.spec, op.box, m_occupancy, reachMm);
-        r.boxes = operatorRegions(r.blocks, op.box, op.spec);
-        r.distance = {};
-        r.key = std::move(key);
-    }
+    if (r.key != key) r = Regions{std::move(key), std::nullopt, {}};
     return r;
+}
+
+const std::vector<operators::LocalBox>&
+SliceRenderer::boxesFor(std::size_t index, const GpuOperator& op, double reachMm) {
+    Regions& r = regionsFor(index, op, reachMm);
+    if (!r.boxes) r.boxes = operatorRegions(op.spec, op.box, m_occupancy, reachMm); // feature-blind
+    return *r.boxes;
+}
+
+const CaseOccupancy& SliceRenderer::casesFor(const GpuOperator& op) {
+    const Alignment& a = op.spec.alignment;
+    const bool surface = a.mode == AlignmentMode::Surface;
+    const double threshold = surface ? a.depth : 0.5;
+    std::vector<double> key{double(m_occupancySerial), double(op.fieldId), threshold,
+                            double(alignmentCode(a.mode))};
+    const auto found = m_cases.find(key);
+    if (found != m_cases.end()) return found->second;
+    // Those of an older occupancy are stale; a sequence that changes the
+    // fields or thresholds as it goes keeps no more than a few.
+    std::erase_if(m_cases, [&](const auto& c) { return c.first[0] != key[0]; });
+    if (m_cases.size() >= 2 * CW_RAY_MAX_OPERATORS) m_cases.clear();
+    if (a.mode == AlignmentMode::Axis)
+        return m_cases.emplace(key, CaseOccupancy::movedOnly(m_occupancy)).first->second;
+    const bake::FieldRanges* ranges =
+        m_cellSpans ? m_operators->features().rangesOf(op.fieldId, m_cellSpans->cellVoxels)
+                    : nullptr;
+    return m_cases
+        .emplace(key, CaseOccupancy::withFeature(m_occupancy, m_cellSpans ? &*m_cellSpans : nullptr,
+                                                 m_visible ? &*m_visible : nullptr, ranges,
+                                                 threshold, !surface))
+        .first->second;
 }
 
 VkPipeline SliceRenderer::pipelineFor(const SliceVariant& variant) {
@@ -380,7 +409,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
             m_roles.push_back({index, false});
             continue;
         }
-        const std::vector<operators::LocalBox>& regions = regionsFor(i, op, reachMm).boxes;
+        const std::vector<operators::LocalBox>& regions = boxesFor(i, op, reachMm);
         if (coverage(regions, op.box.local) > kWholeBoxCoverage) { // not worth a stencil pass
             m_roles.push_back({index, false});
             continue;

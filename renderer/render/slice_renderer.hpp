@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <utility>
 
@@ -91,16 +92,28 @@ private:
     /// `marginVoxels`: for the frame's longest slab (slabMargin).
     const BrickOccupancy& occupancyFor(const Scene& scene, const GpuVolume& volume,
                                        int marginVoxels);
+    /// What skips operator `index`'s empty space, each part made on first
+    /// use and dropped when the operator, its feature field or the
+    /// occupancy change.
     struct Regions {
         std::vector<double> key;
-        OperatorBlocks blocks;
-        std::vector<operators::LocalBox> boxes; ///< the active blocks, merged
-        gpu::Image distance; ///< the ray caster's: chessboardDistance of the blocks (R8_UINT),
-                             ///< made on first use
+        /// Slicing's: the active blocks merged into boxes, of the blocks
+        /// where a brick is occupied (CaseOccupancy without the feature
+        /// field: finer regions split the box into more polygons, and their
+        /// T-junctions leave seams of pixels shaded twice or not at all).
+        std::optional<std::vector<operators::LocalBox>> boxes;
+        /// The ray caster's: chessboardDistance (R8_UINT) of the blocks where
+        /// each case of Eq. 4 can show something (casesFor), exact for rays.
+        gpu::Image distance;
     };
-    /// Operator `index`'s blocks and regions (operatorBlocks), remade when it
-    /// or the occupancy changes.
+    /// Operator `index`'s Regions, emptied when their key changes.
     Regions& regionsFor(std::size_t index, const GpuOperator& op, double reachMm);
+    /// Slicing's boxes of operator `index` (Regions::boxes).
+    const std::vector<operators::LocalBox>& boxesFor(std::size_t index, const GpuOperator& op,
+                                                     double reachMm);
+    /// Where each case of Eq. 4 can show something for operator `op`, with
+    /// its feature field's ranges where it has one (render/case_occupancy.hpp).
+    const CaseOccupancy& casesFor(const GpuOperator& op);
     /// render.method "raycast": the frame by ray casting, over nothing.
     /// `marginVoxels`: for the frame's longest slab (slabMargin).
     /// The chessboard distances of operator `index`'s blocks for the rays
@@ -152,6 +165,9 @@ private:
     std::vector<double> m_occupiedKey;
     uint64_t m_occupancySerial = 0; ///< counts remakes of m_occupancy
     std::vector<Regions> m_regions; ///< per operator
+    /// casesFor's, by occupancy serial, field, threshold and alignment: an
+    /// operator that moves keeps its feature's cells (up to 4 MB on the frog).
+    std::map<std::vector<double>, CaseOccupancy> m_cases;
     bool m_operatorSkipping = true;
     bool m_storageFetch = false;
     bool m_yieldLanes = false;

@@ -21,8 +21,10 @@ VkImageView SliceRenderer::blocksFor(std::size_t index, const GpuOperator& op, d
         return m_noSkipping.view.get();
     }
     Regions& regions = regionsFor(index, op, reachMm);
-    if (!regions.distance.image)
-        regions.distance = distances(regions.blocks.dims, regions.blocks.active);
+    if (!regions.distance.image) {
+        const OperatorBlocks blocks = operatorBlocks(op.spec, op.box, casesFor(op), reachMm);
+        regions.distance = distances(blocks.dims, blocks.active);
+    }
     return regions.distance.view.get();
 }
 

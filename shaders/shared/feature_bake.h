@@ -111,9 +111,31 @@ CW_FUNC float movedValue(float own, bool inside, float outsideSum, float outside
     return inside && outsideCount > 0.0f ? outsideSum / outsideCount : own;
 }
 
+// The range of a feature field over each cell of cellVoxels^3 voxels
+// (feature_ranges.comp; bake/feature_ranges.hpp): the smallest and largest
+// texel that a trilinear sample anywhere in the cell reads (the cell's voxels
+// and one more on every side), in steps of 1 / scale rounded outward and
+// clamped to a signed byte, so a range may be wider than the field's, never
+// narrower (but where it is clamped: see fieldRangeHolds). Empty-space
+// skipping for operators reads them (render/case_occupancy.hpp).
+struct FieldRangeParams {
+    ivec3 dims; // the field's voxels
+    int cellVoxels;
+    float scale; // steps per unit of the field
+    int pad0;
+    int pad1;
+    int pad2;
+};
+
+CW_FUNC ivec2 encodeFieldRange(float lo, float hi, float scale) {
+    return ivec2(int(clamp(floor(lo * scale), -128.0f, 127.0f)),
+                 int(clamp(ceil(hi * scale), -128.0f, 127.0f)));
+}
+
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
+static_assert(sizeof(cutaway::shader::FieldRangeParams) == 32);
 static_assert(sizeof(cutaway::shader::FeatureBakeParams) == 64);
 static_assert(offsetof(cutaway::shader::FeatureBakeParams, spacing) == 16);
 static_assert(offsetof(cutaway::shader::FeatureBakeParams, unused0) == 32);

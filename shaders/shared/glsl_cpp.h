@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 namespace cutaway::shader {
+using glm::ivec2;
 using glm::ivec3;
 using glm::mat3;
 using glm::mat4;
@@ -21,10 +22,12 @@ using glm::vec4;
 using uint = std::uint32_t;
 using glm::abs;
 using glm::atan; // atan(y, x) is GLSL's two-argument arc tangent (std::atan2)
+using glm::ceil;
 using glm::clamp;
 using glm::cos;
 using glm::cross;
 using glm::dot;
+using glm::floor;
 using glm::inverse;
 using glm::length;
 using glm::max;

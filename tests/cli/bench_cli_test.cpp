@@ -109,8 +109,8 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
         EXPECT_LE(rec["ms_median"].get<double>(), rec["ms_max"].get<double>());
         EXPECT_NEAR(rec["fps"].get<double>() * rec["ms_median"].get<double>(), 1000.0, 1e-6);
         for (const char* bake :
-             {"gradients_ms", "distance_field_ms", "segment_mask_ms", "segment_region_ms",
-              "operator_map_ms", "value_spans_ms", "classify_ms"})
+             {"gradients_ms", "distance_field_ms", "field_ranges_ms", "segment_mask_ms",
+              "segment_region_ms", "operator_map_ms", "value_spans_ms", "classify_ms"})
             EXPECT_TRUE(rec["bake_ms"][bake].is_number()) << bake;
         // The segment row's region covers the operator's box: some voxels,
         // none beyond the 24^3 grid.

@@ -2,6 +2,8 @@
 // the regions must cover every point of a deformed box whose sample can be
 // visible, so that an image rendered with them equals the image rendered
 // with the operator shader over the whole box.
+#include "bake/feature_bake.hpp"
+#include "bake/feature_ranges.hpp"
 #include "bake/gradient_bake.hpp"
 #include "gpu_fixture.hpp"
 #include "job/render_job.hpp"
@@ -9,9 +11,12 @@
 #include "render/gpu_volume.hpp"
 #include "render/occupancy.hpp"
 #include "render/operator_regions.hpp"
+#include "render/ray_cells.hpp"
 #include "render/slice_renderer.hpp"
 #include "scene/scene.hpp"
+#include "shared/feature.h"
 #include "shared/operators.h"
+#include "volume/segmentation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -137,6 +142,118 @@ TEST(OperatorRegions, FollowTheOccupancy) {
     none.flags[0] = 0;
     none.sums.assign(none.sums.size(), 0);
     EXPECT_TRUE(render::operatorRegions(spec, world, none, 1.0).empty());
+}
+
+namespace {
+
+// The phantom's scalar field at world point p (voxels of 1 mm, the grid
+// centred on the origin) as the sampler filters it: trilinear, clamped.
+float fieldAt(const std::vector<float>& field, glm::ivec3 dims, glm::dvec3 p) {
+    const glm::dvec3 pos =
+        glm::clamp(p + glm::dvec3(dims) * 0.5 - 0.5, glm::dvec3(0.0), glm::dvec3(dims - 1));
+    const glm::ivec3 lo(pos), hi = glm::min(glm::ivec3(pos) + 1, dims - 1);
+    const glm::dvec3 f = pos - glm::dvec3(lo);
+    double sum = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        const glm::ivec3 v((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+        sum += ((c & 1) ? f.x : 1.0 - f.x) * ((c & 2) ? f.y : 1.0 - f.y) *
+               ((c & 4) ? f.z : 1.0 - f.z) *
+               field[std::size_t(v.x) + std::size_t(dims.x) * (v.y + std::size_t(dims.y) * v.z)];
+    }
+    return float(sum);
+}
+
+int activeCount(const render::OperatorBlocks& b) {
+    return int(std::count(b.active.begin(), b.active.end(), uint8_t(1)));
+}
+
+} // namespace
+
+// With the feature field's ranges, a block is active only where a case of
+// Eq. 4 can show something (render/case_occupancy.hpp): every point whose
+// case, decided as the shader decides it, shows a visible cell's value lies
+// in an active block; and the peel's opening, occupied but neither feature
+// nor moved material, is skipped (fewer blocks than without the field).
+TEST(OperatorRegions, FeatureBlocksCoverEveryPointWhoseCaseCanShow) {
+    const double tau = 3.0;
+    const Scene scene =
+        sceneWith(kOperators[0], R"({"mode": "surface", "threshold": 30, "depth": 3})");
+    const Volume volume = job::loadSceneVolume(scene);
+    const glm::ivec3 dims = volume.dims;
+    const render::Box box{-glm::dvec3(dims) * 0.5, glm::dvec3(dims) * 0.5};
+    const bake::ValueWindow window = job::sceneWindow(scene, volume);
+    const render::VisibleValues visible(
+        {&scene.transfer}, window, scene.render.classification == Classification::Preintegrated);
+    const render::SpanGrid cells = render::spanGrid(volume, window, render::kRayCellVoxels, 2);
+    const render::BrickOccupancy bricks =
+        render::brickOccupancy(render::brickSpans(cells), box, volume.spacing, visible);
+    const std::vector<float> dt =
+        bake::distanceFieldCpu(objectMask(volume, 30.0), dims, volume.spacing);
+    const bake::FieldRanges ranges = bake::fieldRangesCpu(dt, dims, render::kRayCellVoxels, 2.0f);
+    const render::CaseOccupancy cases =
+        render::CaseOccupancy::withFeature(bricks, &cells, &visible, &ranges, tau, false);
+
+    // A fine map and a short reach: blocks of about a voxel, so that a case
+    // flagged a millimetre off would leave points out.
+    OperatorSpec spec = scene.operators.at(0);
+    spec.resolution = glm::ivec3(160);
+    const operators::WorldBox world{spec.localToWorld,
+                                    operators::deformedBounds(spec.params, spec.resolution)};
+    const double reach = 0.25;
+    const render::OperatorBlocks blocks = render::operatorBlocks(spec, world, cases, reach);
+    const render::OperatorBlocks blind =
+        render::operatorBlocks(spec, world, render::CaseOccupancy(bricks), reach);
+    const render::OperatorBlocks axis =
+        render::operatorBlocks(spec, world, render::CaseOccupancy::movedOnly(bricks), reach);
+    ASSERT_EQ(blocks.dims, blind.dims);
+    for (std::size_t i = 0; i < blind.active.size(); ++i) {
+        ASSERT_LE(blocks.active[i], blind.active[i]) << "block " << i; // never adds one
+        ASSERT_LE(axis.active[i], blind.active[i]) << "block " << i;
+    }
+    EXPECT_LT(activeCount(blocks), activeCount(blind) * 9 / 10);
+    EXPECT_LT(activeCount(axis), activeCount(blind));
+
+    const auto cellShows = [&](glm::dvec3 p) {
+        const glm::ivec3 c =
+            glm::clamp(glm::ivec3(glm::floor((p - box.lo) / double(render::kRayCellVoxels))),
+                       glm::ivec3(0), cells.cells - 1);
+        const render::ValueSpan& s =
+            cells.spans[std::size_t(c.x) +
+                        std::size_t(cells.cells.x) * (c.y + std::size_t(cells.cells.y) * c.z)];
+        return !s.empty() && visible.anyIn(s.low(), s.high());
+    };
+    const auto inVolume = [&](glm::dvec3 p) {
+        return glm::all(glm::greaterThanEqual(p, box.lo)) &&
+               glm::all(glm::lessThanEqual(p, box.hi));
+    };
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const glm::dvec3 extent = world.local.hi - world.local.lo;
+    int kept = 0, moved = 0;
+    for (int n = 0; n < 40000; ++n) {
+        const glm::dvec3 q = world.local.lo + glm::dvec3(u(rng), u(rng), u(rng)) * extent;
+        const glm::vec4 m = sampledMap(spec, world.local, q);
+        const glm::dvec3 prime(spec.localToWorld * glm::dvec4(q, 1.0));
+        const glm::dvec3 p0(spec.localToWorld * glm::dvec4(q + glm::dvec3(glm::vec3(m)), 1.0));
+        const float mPrime = fieldAt(dt, dims, prime) >= tau ? 1.0f : 0.0f;
+        const float m0 = fieldAt(dt, dims, p0) >= tau ? 1.0f : 0.0f;
+        const int which =
+            shader::featureCase(m.w > 0.0f && inVolume(p0), m0, inVolume(prime), mPrime);
+        const bool shows = (which == CW_CASE_MASKED && cellShows(prime)) ||
+                           (which == CW_CASE_TRANSFORMED && cellShows(p0));
+        if (!shows) continue;
+        (which == CW_CASE_MASKED ? kept : moved) += 1;
+        const glm::ivec3 b = glm::min(
+            glm::ivec3(glm::floor((q - world.local.lo) / extent * glm::dvec3(spec.resolution))) /
+                render::kOperatorBlockTexels,
+            blocks.dims - 1);
+        ASSERT_EQ(blocks.active[std::size_t(b.x) + std::size_t(blocks.dims.x) *
+                                                       (b.y + std::size_t(blocks.dims.y) * b.z)],
+                  1)
+            << "q " << q.x << " " << q.y << " " << q.z << " case " << which;
+    }
+    EXPECT_GT(kept, 1000); // both cases tried
+    EXPECT_GT(moved, 1000);
 }
 
 namespace {
