@@ -92,24 +92,42 @@ OperatorBlocks operatorBlocks(const OperatorSpec& spec, const operators::WorldBo
                     active[index] = 1;
                     continue;
                 }
-                // p0: q plus a convex blend of the texels whose centres bracket the span.
+                // p0: q plus a trilinear blend of the displacements of the
+                // texels whose centres bracket the span. Between texel
+                // centres q is the same blend of the centres, so p0 is a
+                // convex blend of the texels' own pre-images (centre plus
+                // displacement): a rotating flap's p0 lie in the rotated
+                // block, not in the block swept by every displacement. Where
+                // the span passes the outermost centres the sampler clamps,
+                // and p0 moves with q beyond them.
                 const glm::ivec3 t0 = glm::clamp(
                     glm::ivec3(glm::floor((spanLo - lo) / texel - 0.5)), glm::ivec3(0), res - 1);
                 const glm::ivec3 t1 = glm::clamp(glm::ivec3(glm::ceil((spanHi - lo) / texel - 0.5)),
                                                  glm::ivec3(0), res - 1);
-                glm::vec3 dLo(1e30f), dHi(-1e30f);
+                glm::dvec3 preLo(1e300), preHi(-1e300), dLo(1e300), dHi(-1e300);
                 bool exists = false;
                 for (int z = t0.z; z <= t1.z; ++z)
                     for (int y = t0.y; y <= t1.y; ++y)
                         for (int x = t0.x; x <= t1.x; ++x) {
                             const Texel& t = texelAt(x, y, z);
-                            dLo = glm::min(dLo, t.displacement);
-                            dHi = glm::max(dHi, t.displacement);
+                            const glm::dvec3 centre = lo + (glm::dvec3(x, y, z) + 0.5) * texel;
+                            const glm::dvec3 pre = centre + glm::dvec3(t.displacement);
+                            preLo = glm::min(preLo, pre);
+                            preHi = glm::max(preHi, pre);
+                            dLo = glm::min(dLo, glm::dvec3(t.displacement));
+                            dHi = glm::max(dHi, glm::dvec3(t.displacement));
                             exists = exists || t.w > 0.0f;
                         }
                 if (!exists) continue; // all cut: no pre-image anywhere in the block
-                const Box source = worldBounds(box.localToWorld, spanLo + glm::dvec3(dLo),
-                                               spanHi + glm::dvec3(dHi));
+                const glm::dvec3 centreLo = lo + (glm::dvec3(t0) + 0.5) * texel;
+                const glm::dvec3 centreHi = lo + (glm::dvec3(t1) + 0.5) * texel;
+                // Both bounds hold; each is the tighter one somewhere (the
+                // span plus every displacement where the map translates).
+                const glm::dvec3 sourceLo =
+                    glm::max(preLo - glm::max(centreLo - spanLo, glm::dvec3(0.0)), spanLo + dLo);
+                const glm::dvec3 sourceHi =
+                    glm::min(preHi + glm::max(spanHi - centreHi, glm::dvec3(0.0)), spanHi + dHi);
+                const Box source = worldBounds(box.localToWorld, sourceLo, sourceHi);
                 active[index] = cases.movedMayShow(source.lo - pad, source.hi + pad) ? 1 : 0;
             }
 
