@@ -71,9 +71,14 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
                 // float too). A filter that mixed up two axes or missed the
                 // clamp moves whole edges by more than 0.1.
                 // A GPU weighs 16-bit texels in 8 bits too (expectAgree): up to
-                // 0.0033 on an H200.
-                const bool quantized = format == VK_FORMAT_R8_UNORM || !filtersInFloat();
-                EXPECT_LT(d.maxAbs, quantized ? 0.03f : 1e-5f) << "rms " << d.rms;
+                // 0.0033 on an H200 for the values, and 0.14 in single pixels
+                // with the peeler (2026-11-27), whose distance field it filters
+                // so too: the mask's edge moves by a fraction of a voxel. There
+                // the rms below is what sees a filter gone wrong.
+                const float most = !filtersInFloat()              ? kQuantizedMaxAbs
+                                   : format == VK_FORMAT_R8_UNORM ? 0.03f
+                                                                  : 1e-5f;
+                EXPECT_LT(d.maxAbs, most) << "rms " << d.rms;
                 EXPECT_LT(d.rms, 2e-3);
                 if (format == VK_FORMAT_R8_UNORM) {
                     EXPECT_GT(d.maxAbs, 0.0f) << "the same to the bit: not loaded and filtered";
