@@ -128,7 +128,8 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     std::snprintf(took, sizeof took, "%.2f", seconds);
     m_notes.push_back(spec.name + ": " + note + ", baked in " + took + " s");
     ++m_bakes;
-    // DT in mm, to 63.5 mm (a depth tau further in is not skipped by); M in [0, 1].
+    // The ranges' steps: DT in half millimetres, up to 63.5 mm (a deeper tau
+    // falls back to the bricks: FieldRanges::resolves); M in hundredths.
     const float rangeScale = a.mode == AlignmentMode::Surface ? 2.0f : 100.0f;
     const Field& made =
         m_fields.emplace(k, Field{std::move(field), m_nextId++, rangeScale, std::nullopt})
