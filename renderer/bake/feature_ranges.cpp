@@ -14,6 +14,16 @@ namespace {
 // Steps to spare between a threshold and the ends of a byte's range.
 constexpr double kSpareSteps = 2.0;
 
+// Ranges over cells of `cellVoxels`^3 of a grid of `dims` voxels, not yet filled.
+FieldRanges unfilled(glm::ivec3 dims, int cellVoxels, float scale) {
+    FieldRanges r;
+    r.cellVoxels = cellVoxels;
+    r.scale = scale;
+    r.cells = (dims + cellVoxels - 1) / cellVoxels;
+    r.lohi.resize(2 * std::size_t(r.cells.x) * r.cells.y * r.cells.z);
+    return r;
+}
+
 } // namespace
 
 bool FieldRanges::mayReach(std::size_t i, double threshold) const {
@@ -32,11 +42,7 @@ bool FieldRanges::resolves(double threshold) const {
 
 FieldRanges fieldRangesCpu(const std::vector<float>& field, glm::ivec3 dims, int cellVoxels,
                            float scale) {
-    FieldRanges r;
-    r.cellVoxels = cellVoxels;
-    r.scale = scale;
-    r.cells = (dims + cellVoxels - 1) / cellVoxels;
-    r.lohi.resize(2 * std::size_t(r.cells.x) * r.cells.y * r.cells.z);
+    FieldRanges r = unfilled(dims, cellVoxels, scale);
     std::size_t i = 0;
     for (int cz = 0; cz < r.cells.z; ++cz)
         for (int cy = 0; cy < r.cells.y; ++cy)
@@ -75,10 +81,7 @@ FieldRangeBaker::FieldRangeBaker(const gpu::Context& ctx) : m_ctx(ctx) {
 
 FieldRanges FieldRangeBaker::ranges(const gpu::Image& field, int cellVoxels, float scale) const {
     const glm::ivec3 dims(field.extent.width, field.extent.height, field.extent.depth);
-    FieldRanges r;
-    r.cellVoxels = cellVoxels;
-    r.scale = scale;
-    r.cells = (dims + cellVoxels - 1) / cellVoxels;
+    FieldRanges r = unfilled(dims, cellVoxels, scale);
     const glm::uvec3 n(r.cells);
     gpu::Image out = gpu::createImage(m_ctx, VK_IMAGE_TYPE_3D, VK_FORMAT_R8G8_SINT, {n.x, n.y, n.z},
                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
@@ -97,8 +100,7 @@ FieldRanges FieldRangeBaker::ranges(const gpu::Image& field, int cellVoxels, flo
                           sizeof params, glm::uvec3(8, 8, 1), VK_IMAGE_LAYOUT_GENERAL,
                           glm::uvec3((n.x + 1) / 2, n.y, 1));
     const std::vector<std::byte> bytes = gpu::downloadImage(m_ctx, out, VK_IMAGE_LAYOUT_GENERAL, 2);
-    r.lohi.resize(bytes.size());
-    std::memcpy(r.lohi.data(), bytes.data(), bytes.size());
+    std::memcpy(r.lohi.data(), bytes.data(), r.lohi.size());
     return r;
 }
 

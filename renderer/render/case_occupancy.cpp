@@ -1,5 +1,7 @@
 #include "render/case_occupancy.hpp"
 
+#include "render/ray_cells.hpp"
+
 #include <cmath>
 
 namespace cutaway::render {
@@ -23,13 +25,11 @@ CaseOccupancy CaseOccupancy::withFeature(const BrickOccupancy& bricks, const Spa
         return c;
     c.m_cells = cells->cells;
     c.m_cellMm = bricks.brickMm * (double(cells->cellVoxels) / double(kBrickVoxels));
-    c.m_flags.resize(cells->spans.size());
-    for (std::size_t i = 0; i < c.m_flags.size(); ++i) {
-        const ValueSpan& s = cells->spans[i];
-        if (s.empty() || !visible->anyIn(s.low(), s.high())) continue;
-        c.m_flags[i] = uint8_t((ranges->mayReach(i, threshold) ? kKept : 0) |
-                               (ranges->mayBeBelow(i, threshold) ? kMoved : 0));
-    }
+    c.m_flags = occupiedCells(*cells, *visible);
+    for (std::size_t i = 0; i < c.m_flags.size(); ++i)
+        if (c.m_flags[i])
+            c.m_flags[i] = uint8_t((ranges->mayReach(i, threshold) ? kKept : 0) |
+                                   (ranges->mayBeBelow(i, threshold) ? kMoved : 0));
     return c;
 }
 

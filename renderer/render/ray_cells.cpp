@@ -61,11 +61,7 @@ std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>
     return distance;
 }
 
-RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
-    RayCells result;
-    const glm::ivec3 n = spans.cells;
-    result.cells = n;
-    result.flags.assign(spans.spans.size(), 0);
+std::vector<uint8_t> occupiedCells(const SpanGrid& spans, const VisibleValues& visible) {
     // Whether a span may show, by its two ends (kSpanSteps + 1 values each):
     // one lookup per cell instead of anyIn's arithmetic, for 4 M cells.
     std::vector<uint8_t> shows(std::size_t(kSpanSteps + 1) * (kSpanSteps + 1), 0);
@@ -75,6 +71,19 @@ RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
             shows[std::size_t(lo) * (kSpanSteps + 1) + std::size_t(hi)] =
                 visible.anyIn(span.low(), span.high()) ? 1 : 0;
         }
+    std::vector<uint8_t> flags(spans.spans.size(), 0);
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+        const ValueSpan& s = spans.spans[i];
+        flags[i] = shows[std::size_t(s.lo) * (kSpanSteps + 1) + s.hi];
+    }
+    return flags;
+}
+
+RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
+    RayCells result;
+    const glm::ivec3 n = spans.cells;
+    result.cells = n;
+    result.flags = occupiedCells(spans, visible);
     result.lo = n;
     result.hi = glm::ivec3(0);
     for (int cz = 0; cz < n.z; ++cz)
@@ -82,9 +91,7 @@ RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible) {
             for (int cx = 0; cx < n.x; ++cx) {
                 const std::size_t i =
                     std::size_t(cx) + std::size_t(n.x) * (cy + std::size_t(n.y) * cz);
-                const ValueSpan& s = spans.spans[i];
-                if (!shows[std::size_t(s.lo) * (kSpanSteps + 1) + s.hi]) continue;
-                result.flags[i] = 1;
+                if (!result.flags[i]) continue;
                 result.lo = glm::min(result.lo, glm::ivec3(cx, cy, cz));
                 result.hi = glm::max(result.hi, glm::ivec3(cx, cy, cz) + 1);
             }

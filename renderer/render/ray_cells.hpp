@@ -37,6 +37,10 @@ std::vector<uint8_t> chessboardDistance(glm::ivec3 n, const std::vector<uint8_t>
 /// with the same reach: their 2x2x2 unions, taken until the cells are bricks.
 SpanGrid brickSpans(const SpanGrid& cells);
 
+/// Per cell of `spans` (x fastest), 1 where some value it spans can show
+/// (`visible`), else 0.
+std::vector<uint8_t> occupiedCells(const SpanGrid& spans, const VisibleValues& visible);
+
 /// The cells whose spans (kRayCellVoxels cells reaching 1 + the margin) are
 /// `spans`, where `visible` says which values can show.
 RayCells rayCells(const SpanGrid& spans, const VisibleValues& visible);
