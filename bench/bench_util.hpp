@@ -17,6 +17,13 @@ inline double millisecondsOf(const std::function<void()>& body) {
         .count();
 }
 
+/// Seconds on the steady clock (CLOCK_MONOTONIC on Linux, which other
+/// processes read too: bench/ab_interleave.py).
+inline double steadySeconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
 struct Stats {
     double median = 0.0, min = 0.0, max = 0.0;
 };

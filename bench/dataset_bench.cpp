@@ -3,6 +3,7 @@
 #include "bake/feature_ranges.hpp"
 #include "bake/feature_region.hpp"
 #include "bake/operator_bake.hpp"
+#include "baton.hpp"
 #include "bench_util.hpp"
 #include "core/error.hpp"
 #include "job/render_job.hpp"
@@ -182,6 +183,10 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
     } catch (const InputError& e) {
         return {{"skipped", e.what()}};
     }
+    // With another process taking turns, the scan's loading and the bakes are
+    // a turn of their own: they would slow the other's frames.
+    Baton baton(o.batonFile, o.batonId, o.batonSlice);
+    baton.acquire();
     const nlohmann::json bakes = o.bakeRepeats > 0 ? bakeTimes(ctx, entry, o) : nlohmann::json();
     // The bake timings above keep extra copies; the peak that matters is a
     // render's: from here on, as `cutaway render` would hold it.
@@ -208,11 +213,16 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
                 settings.push_back({"/render/method", method});
                 Scene scene = loadScene(entry.scene, settings);
                 const double azimuth = scene.camera.azimuthDeg;
+                baton.acquire();
                 const double firstMs = millisecondsOf([&] { renderer.render(scene); });
-                std::vector<double> ms;
+                baton.release();
+                std::vector<double> ms, starts;
                 for (int i = 1; i <= o.frames; ++i) {
                     scene.camera.azimuthDeg = azimuth + 360.0 * i / o.frames;
+                    baton.acquire();
+                    starts.push_back(steadySeconds());
                     ms.push_back(millisecondsOf([&] { renderer.render(scene); }));
+                    baton.release();
                     if (alignment == "none" && method == "slicing") vtk.addCamera(scene, spacing);
                 }
                 const Stats s = statsOf(ms);
@@ -236,6 +246,10 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
                 r["ms_max"] = s.max;
                 r["fps"] = 1000.0 / s.median;
                 r["first_frame_ms"] = firstMs;
+                // Each frame's time and start (CLOCK_MONOTONIC seconds), in view
+                // order: bench/ab_interleave.py pairs two builds' frames by view.
+                r["frame_ms"] = ms;
+                r["frame_start_s"] = starts;
                 if (o.census && method == "raycast") {
                     scene.camera.azimuthDeg = azimuth;
                     r["census"] = censusOf(renderer, scene);
@@ -249,6 +263,7 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
             }
         }
     }
+    baton.finish();
     if (!o.vtkDir.empty()) vtk.write(o.vtkDir);
     const double peak = peakRssMiB();
     const double devicePeak = double(ctx.memoryPeak()) / (1024.0 * 1024.0);

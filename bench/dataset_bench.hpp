@@ -27,6 +27,12 @@ struct BenchOptions {
     /// Ray-cast rows also count their first frame's samples by kind
     /// (SliceRenderer::setCensus): the record's "census", samples per frame.
     bool census = false;
+    /// Turn-taking with another benchmark process (bench/baton.hpp,
+    /// bench/ab_interleave.py): the turn's file (empty: none), this process's
+    /// id (0 or 1) and the seconds it keeps the turn.
+    std::filesystem::path batonFile;
+    int batonId = 0;
+    double batonSlice = 2.0;
 };
 
 /// A row of bench/table1.json: a scene with one operator, and the alignment

@@ -149,6 +149,13 @@ int main(int argc, char** argv) {
                    "Runs of each bake timing (0: no bake timings, frames only)")
         ->check(CLI::Range(0, 100));
     std::vector<std::string> sets;
+    app.add_option(
+        "--baton", o.batonFile,
+        "Take turns with another benchmark process through this file (ab_interleave.py)");
+    app.add_option("--baton-id", o.batonId, "This process's id in the turn-taking")
+        ->check(CLI::Range(0, 1));
+    app.add_option("--baton-slice", o.batonSlice, "Seconds this process keeps the turn")
+        ->check(CLI::PositiveNumber);
     app.add_flag("--census", o.census,
                  "Count the samples of each ray-cast row's first view by kind (record's census)");
     app.add_option("--set", sets, "Override a scene value in every row: /json/pointer=VALUE");
