@@ -17,8 +17,8 @@ inline double millisecondsOf(const std::function<void()>& body) {
         .count();
 }
 
-/// Seconds on the steady clock (CLOCK_MONOTONIC on Linux, which other
-/// processes read too: bench/ab_interleave.py).
+/// Seconds on the steady clock (CLOCK_MONOTONIC on Linux, the same in every
+/// process).
 inline double steadySeconds() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
         .count();

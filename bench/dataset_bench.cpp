@@ -246,10 +246,12 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
                 r["ms_max"] = s.max;
                 r["fps"] = 1000.0 / s.median;
                 r["first_frame_ms"] = firstMs;
-                // Each frame's time and start (CLOCK_MONOTONIC seconds), in view
-                // order: bench/ab_interleave.py pairs two builds' frames by view.
+                // Each frame's time, in view order: bench/ab_interleave.py pairs two
+                // builds' frames by view.
                 r["frame_ms"] = ms;
-                r["frame_start_s"] = starts;
+                // Taking turns, where each frame started (CLOCK_MONOTONIC
+                // seconds): the other process's frames lie between them.
+                if (!o.batonFile.empty()) r["frame_start_s"] = starts;
                 if (o.census && method == "raycast") {
                     scene.camera.azimuthDeg = azimuth;
                     r["census"] = censusOf(renderer, scene);

@@ -4,6 +4,7 @@
 // Nothing here looks at a time's size: benchmarks report, tests never time.
 #include "cli_util.hpp"
 
+#include <future>
 #include <nlohmann/json.hpp>
 
 namespace cutaway::test {
@@ -187,6 +188,91 @@ TEST_F(BenchCli, AbCompareGivesEachRowItsRatioOverThePairs) {
         ASSERT_NE(at, std::string::npos) << row << "\n" << r.output;
         const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
         EXPECT_EQ(line.substr(line.size() - 6), " | 2 |") << line;
+    }
+    const CommandResult bad =
+        runProgram("python3", script + " " + (m_dir / "absent").string() + " " + CUTAWAY_BENCH);
+    EXPECT_EQ(bad.code, 2) << bad.output;
+    EXPECT_NE(bad.output.find("absent: not an executable file"), std::string::npos) << bad.output;
+}
+
+// Two benchmark processes taking turns (--baton, what bench/ab_interleave.py
+// runs): both finish, and no frame of one overlaps a frame of the other.
+TEST_F(BenchCli, TwoProcessesTakingTurnsNeverRenderAtOnce) {
+    const auto table = writeTable();
+    const auto baton = m_dir / "baton";
+    std::ofstream(baton) << "0\n";
+    auto run = [&](int id) {
+        return runProgram(CUTAWAY_BENCH,
+                          "--table " + table.string() + " --json " +
+                              (m_dir / ("turns" + std::to_string(id) + ".json")).string() +
+                              " --baton " + baton.string() + " --baton-id " + std::to_string(id) +
+                              " --baton-slice 0.005 --alignments none --methods raycast"
+                              " --spacings 1.0 --frames 30 --size 64 --turntable 0"
+                              " --bake-repeats 0");
+    };
+    auto second = std::async(std::launch::async, run, 1);
+    const CommandResult first = run(0);
+    const CommandResult other = second.get();
+    ASSERT_EQ(first.code, 0) << first.output;
+    ASSERT_EQ(other.code, 0) << other.output;
+    std::vector<std::pair<double, double>> frames[2]; // [start, end] seconds
+    for (int id = 0; id < 2; ++id) {
+        json records;
+        std::ifstream(m_dir / ("turns" + std::to_string(id) + ".json")) >> records;
+        ASSERT_EQ(records.size(), 1u) << records.dump();
+        const json& ms = records[0]["frame_ms"];
+        const json& starts = records[0]["frame_start_s"];
+        ASSERT_EQ(ms.size(), 30u);
+        ASSERT_EQ(starts.size(), 30u);
+        for (std::size_t i = 0; i < 30; ++i)
+            frames[id].emplace_back(starts[i].get<double>(),
+                                    starts[i].get<double>() + ms[i].get<double>() / 1000.0);
+    }
+    for (const auto& [a0, a1] : frames[0])
+        for (const auto& [b0, b1] : frames[1])
+            EXPECT_TRUE(a1 <= b0 || b1 <= a0) << a0 << "-" << a1 << " and " << b0 << "-" << b1;
+    // And they did take turns: in the order of their starts, the frames
+    // change hands again and again (turns of 5 ms, frames of a few ms).
+    std::vector<std::pair<double, int>> order;
+    for (int id = 0; id < 2; ++id)
+        for (const auto& f : frames[id])
+            order.emplace_back(f.first, id);
+    std::sort(order.begin(), order.end());
+    int handovers = 0;
+    for (std::size_t i = 1; i < order.size(); ++i)
+        handovers += order[i].second != order[i - 1].second;
+    EXPECT_GE(handovers, 4);
+    // Both left their markers; without a baton no start is recorded.
+    EXPECT_TRUE(std::filesystem::exists(baton.string() + ".done0"));
+    EXPECT_TRUE(std::filesystem::exists(baton.string() + ".done1"));
+    const auto [alone, records] =
+        runBench("alone.json", "--alignments none --methods raycast --spacings 1.0 --frames 2"
+                               " --size 32 --turntable 0 --bake-repeats 0");
+    ASSERT_EQ(alone.code, 0) << alone.output;
+    EXPECT_EQ(records[0]["frame_ms"].size(), 2u);
+    EXPECT_FALSE(records[0].contains("frame_start_s"));
+    const CommandResult bad = runProgram(CUTAWAY_BENCH, "--baton-id 2");
+    EXPECT_NE(bad.code, 0);
+    EXPECT_NE(bad.output.find("--baton-id"), std::string::npos) << bad.output;
+}
+
+// bench/ab_interleave.py: the same build twice gives a row per alignment,
+// one paired view per frame.
+TEST_F(BenchCli, AbInterleavePairsEveryView) {
+    const auto table = writeTable();
+    const std::string script = std::string(CUTAWAY_SOURCE_DIR) + "/bench/ab_interleave.py";
+    const CommandResult r =
+        runProgram("python3", script + " " + CUTAWAY_BENCH + " " + CUTAWAY_BENCH + " --table " +
+                                  table.string() +
+                                  " --dataset tiny --alignments none,axis --frames 3 --rounds 2"
+                                  " --size 32 --slice 0.01");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (const char* alignment : {"none", "axis"}) {
+        const std::string row = std::string("| tiny | ") + alignment + " | raycast | 1.0 | ";
+        const auto at = r.output.find(row);
+        ASSERT_NE(at, std::string::npos) << row << "\n" << r.output;
+        const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+        EXPECT_EQ(line.substr(line.size() - 6), " | 6 |") << line;
     }
     const CommandResult bad =
         runProgram("python3", script + " " + (m_dir / "absent").string() + " " + CUTAWAY_BENCH);
