@@ -349,35 +349,38 @@ vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D fea
     // SIMD CPUs both sides of a branch run, so a call in each would cost twice.
     vec4 g = featureGradient(op, feature, slot, mode, gradientAt(s.middle.tc), s.middle.feature,
                              s.middle.tc, !masked, breakWeight(op, s.middle));
-    if (masked) { // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend
-        vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
-        return shade(c, n, viewer);
+    // p = p': the volume's own gradient (Eq. 5), with Eq. 9's blend. Moved
+    // points carry it through the map's Jacobian instead; both are lit by one
+    // call below (lavapipe runs both sides of a branch: a call in each lit
+    // every slab twice).
+    vec4 n = vec4(dot(g.xyz, g.xyz) > 1e-12 ? normalize(g.xyz) : vec3(0.0), g.w);
+    if (!masked) {
+        // Jacobian of the continuous backward map and gradient of the cut
+        // distance, by central differences over one texel of the map
+        // (baked: mapDerivative).
+        vec3 q = (op.worldToLocal * vec4(shadePoint, 1.0)).xyz;
+        mat3 jacobian;
+        vec3 cutGradient;
+        for (int i = 0; i < 3; ++i) {
+            vec4 d = mapDerivative(op, derivatives, q, i);
+            vec3 column = d.xyz;
+            column[i] += 1.0;
+            jacobian[i] = column;
+            cutGradient[i] = d.w;
+        }
+        mat3 a = mat3(op.localToWorld);
+        mat3 aInvT = transpose(mat3(op.worldToLocal));
+        vec3 carried = aInvT * (transpose(jacobian) * (transpose(a) * g.xyz)); // Eq. 5
+        vec3 cut = aInvT * cutGradient; // points into the material
+        float omega = op.band.x > 0.0 ? 1.0 - bandMean(s.wNear, s.wFar, op.band.x) : 0.0;
+        n = vec4(dot(carried, carried) > 1e-12 ? normalize(carried) : vec3(0.0), g.w);
+        if (omega > 0.0 && dot(cut, cut) > 1e-12) { // Eq. 7
+            vec3 blended = mix(n.xyz, normalize(cut), omega);
+            n = vec4(dot(blended, blended) > 1e-12 ? normalize(blended) : normalize(cut),
+                     mix(g.w, 1.0, omega));
+        }
     }
-
-    // Jacobian of the continuous backward map and gradient of the cut distance,
-    // by central differences over one texel of the map (baked: mapDerivative).
-    vec3 q = (op.worldToLocal * vec4(shadePoint, 1.0)).xyz;
-    mat3 jacobian;
-    vec3 cutGradient;
-    for (int i = 0; i < 3; ++i) {
-        vec4 d = mapDerivative(op, derivatives, q, i);
-        vec3 column = d.xyz;
-        column[i] += 1.0;
-        jacobian[i] = column;
-        cutGradient[i] = d.w;
-    }
-    mat3 a = mat3(op.localToWorld);
-    mat3 aInvT = transpose(mat3(op.worldToLocal));
-    vec3 carried = aInvT * (transpose(jacobian) * (transpose(a) * g.xyz)); // Eq. 5
-    vec3 cut = aInvT * cutGradient; // points into the material
-    float omega = op.band.x > 0.0 ? 1.0 - bandMean(s.wNear, s.wFar, op.band.x) : 0.0;
-    vec4 gradient = vec4(dot(carried, carried) > 1e-12 ? normalize(carried) : vec3(0.0), g.w);
-    if (omega > 0.0 && dot(cut, cut) > 1e-12) { // Eq. 7
-        vec3 blended = mix(gradient.xyz, normalize(cut), omega);
-        gradient = vec4(dot(blended, blended) > 1e-12 ? normalize(blended) : normalize(cut),
-                        mix(g.w, 1.0, omega));
-    }
-    return shade(c, gradient, viewer);
+    return shade(c, n, viewer);
 }
 
 #endif
