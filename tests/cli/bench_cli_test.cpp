@@ -62,6 +62,26 @@ protected:
         if (run.result.code == 0) std::ifstream(results) >> run.records;
         return run;
     }
+    // A comparison script's table (ab_compare.py, ab_interleave.py): a ray-cast
+    // row for "none" and "axis", each ending in `count` (its pairs or views).
+    static void expectRowsCounting(const std::string& output, int count) {
+        for (const char* alignment : {"none", "axis"}) {
+            const std::string row = std::string("| tiny | ") + alignment + " | raycast | 1.0 | ";
+            const auto at = output.find(row);
+            ASSERT_NE(at, std::string::npos) << row << "\n" << output;
+            const std::string line = output.substr(at, output.find('\n', at) - at);
+            const std::string tail = " | " + std::to_string(count) + " |";
+            EXPECT_EQ(line.substr(line.size() - tail.size()), tail) << line;
+        }
+    }
+    // The script refuses a benchmark that is not an executable file, naming it.
+    void expectRefusesAnAbsentBench(const std::string& script) {
+        const CommandResult bad =
+            runProgram("python3", script + " " + (m_dir / "absent").string() + " " + CUTAWAY_BENCH);
+        EXPECT_EQ(bad.code, 2) << bad.output;
+        EXPECT_NE(bad.output.find("absent: not an executable file"), std::string::npos)
+            << bad.output;
+    }
 };
 
 TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
@@ -182,17 +202,8 @@ TEST_F(BenchCli, AbCompareGivesEachRowItsRatioOverThePairs) {
                                   " --datasets '' --alignments none,axis --pairs 2 --frames 1"
                                   " --size 32");
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* alignment : {"none", "axis"}) {
-        const std::string row = std::string("| tiny | ") + alignment + " | raycast | 1.0 | ";
-        const auto at = r.output.find(row);
-        ASSERT_NE(at, std::string::npos) << row << "\n" << r.output;
-        const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
-        EXPECT_EQ(line.substr(line.size() - 6), " | 2 |") << line;
-    }
-    const CommandResult bad =
-        runProgram("python3", script + " " + (m_dir / "absent").string() + " " + CUTAWAY_BENCH);
-    EXPECT_EQ(bad.code, 2) << bad.output;
-    EXPECT_NE(bad.output.find("absent: not an executable file"), std::string::npos) << bad.output;
+    expectRowsCounting(r.output, 2);
+    expectRefusesAnAbsentBench(script);
 }
 
 // Two benchmark processes taking turns (--baton, what bench/ab_interleave.py
@@ -267,17 +278,8 @@ TEST_F(BenchCli, AbInterleavePairsEveryView) {
                                   " --dataset tiny --alignments none,axis --frames 3 --rounds 2"
                                   " --size 32 --slice 0.01");
     ASSERT_EQ(r.code, 0) << r.output;
-    for (const char* alignment : {"none", "axis"}) {
-        const std::string row = std::string("| tiny | ") + alignment + " | raycast | 1.0 | ";
-        const auto at = r.output.find(row);
-        ASSERT_NE(at, std::string::npos) << row << "\n" << r.output;
-        const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
-        EXPECT_EQ(line.substr(line.size() - 6), " | 6 |") << line;
-    }
-    const CommandResult bad =
-        runProgram("python3", script + " " + (m_dir / "absent").string() + " " + CUTAWAY_BENCH);
-    EXPECT_EQ(bad.code, 2) << bad.output;
-    EXPECT_NE(bad.output.find("absent: not an executable file"), std::string::npos) << bad.output;
+    expectRowsCounting(r.output, 6);
+    expectRefusesAnAbsentBench(script);
 }
 
 TEST_F(BenchCli, JitProfileFindsTheFrameInTheGeneratedCode) {
