@@ -59,7 +59,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("bench_a")
     parser.add_argument("bench_b")
-    parser.add_argument("--rounds", type=int, default=1, help="runs of each row (A first, then B)")
+    parser.add_argument("--rounds", type=int, default=1, help="runs of each row, alternating which build takes the first turn")
     parser.add_argument("--dataset", default="ct_head")
     parser.add_argument("--alignments", default="none,surface")
     parser.add_argument("--method", default="raycast")

@@ -4,7 +4,9 @@
 // it has held it for a slice of time, so two builds compared frame by frame
 // meet the same drift of the machine's speed within seconds. The turn is the
 // content of a file ("0" or "1"); a process that is done leaves a marker
-// (the file's name + ".done" + its id) so the other stops waiting.
+// (the file's name + ".done" + its id) so the other stops waiting. Each
+// dataset runs in a child process of its own (table1_bench.cpp), with a
+// Baton of its own that hands the turn over at its end.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -35,7 +37,14 @@ public:
         if (held.count() >= m_slice) pass();
     }
 
-    /// Passes the turn on for good.
+    /// Passes the turn on if this process holds it (a dataset's child process
+    /// at its end: the next dataset's takes its turn afresh).
+    void handOver() {
+        if (!m_file.empty() && m_held) pass();
+    }
+
+    /// Passes the turn on for good (the benchmark's main process, after its
+    /// datasets).
     void finish() {
         if (m_file.empty()) return;
         std::ofstream(marker(m_id)) << "done\n";

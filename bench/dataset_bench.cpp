@@ -265,7 +265,7 @@ nlohmann::json benchDataset(const gpu::Context& ctx, const DatasetEntry& entry,
             }
         }
     }
-    baton.finish();
+    baton.handOver();
     if (!o.vtkDir.empty()) vtk.write(o.vtkDir);
     const double peak = peakRssMiB();
     const double devicePeak = double(ctx.memoryPeak()) / (1024.0 * 1024.0);

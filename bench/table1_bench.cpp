@@ -4,6 +4,7 @@
 // peak memory of each dataset; and a 36-frame turntable written to disk.
 // Each dataset runs in a child process of its own so its peak memory is its
 // own. Prints tables and writes bench/results.json; asserts nothing.
+#include "baton.hpp"
 #include "bench_util.hpp"
 #include "core/error.hpp"
 #include "core/process_memory.hpp"
@@ -227,6 +228,7 @@ int main(int argc, char** argv) {
             records.push_back(r);
         }
     }
+    bench::Baton(o.batonFile, o.batonId, o.batonSlice).finish(); // the turntable takes no turns
     if (turntableFrames > 0) {
         const json result = inChild([&](const gpu::Context& ctx) {
             return bench::benchTurntable(ctx, entries, only, o, turntableFrames);

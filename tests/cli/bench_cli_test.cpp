@@ -207,9 +207,16 @@ TEST_F(BenchCli, AbCompareGivesEachRowItsRatioOverThePairs) {
 }
 
 // Two benchmark processes taking turns (--baton, what bench/ab_interleave.py
-// runs): both finish, and no frame of one overlaps a frame of the other.
+// runs): both finish, and no frame of one overlaps a frame of the other,
+// over two datasets (each runs in a child process of its own).
 TEST_F(BenchCli, TwoProcessesTakingTurnsNeverRenderAtOnce) {
-    const auto table = writeTable();
+    json twice;
+    std::ifstream(writeTable()) >> twice;
+    json again = twice["datasets"][0];
+    again["dataset"] = "again";
+    twice["datasets"].push_back(again);
+    const auto table = m_dir / "twice.json";
+    std::ofstream(table) << twice.dump();
     const auto baton = m_dir / "baton";
     std::ofstream(baton) << "0\n";
     auto run = [&](int id) {
@@ -230,14 +237,16 @@ TEST_F(BenchCli, TwoProcessesTakingTurnsNeverRenderAtOnce) {
     for (int id = 0; id < 2; ++id) {
         json records;
         std::ifstream(m_dir / ("turns" + std::to_string(id) + ".json")) >> records;
-        ASSERT_EQ(records.size(), 1u) << records.dump();
-        const json& ms = records[0]["frame_ms"];
-        const json& starts = records[0]["frame_start_s"];
-        ASSERT_EQ(ms.size(), 30u);
-        ASSERT_EQ(starts.size(), 30u);
-        for (std::size_t i = 0; i < 30; ++i)
-            frames[id].emplace_back(starts[i].get<double>(),
-                                    starts[i].get<double>() + ms[i].get<double>() / 1000.0);
+        ASSERT_EQ(records.size(), 2u) << records.dump();
+        for (const json& record : records) {
+            const json& ms = record["frame_ms"];
+            const json& starts = record["frame_start_s"];
+            ASSERT_EQ(ms.size(), 30u);
+            ASSERT_EQ(starts.size(), 30u);
+            for (std::size_t i = 0; i < 30; ++i)
+                frames[id].emplace_back(starts[i].get<double>(),
+                                        starts[i].get<double>() + ms[i].get<double>() / 1000.0);
+        }
     }
     for (const auto& [a0, a1] : frames[0])
         for (const auto& [b0, b1] : frames[1])
