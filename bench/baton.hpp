@@ -17,7 +17,6 @@ namespace cutaway::bench {
 
 class Baton {
 public:
-    Baton() = default;
     Baton(std::filesystem::path file, int id, double sliceSeconds)
         : m_file(std::move(file)), m_id(id), m_slice(sliceSeconds) {}
 
