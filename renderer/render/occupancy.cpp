@@ -2,6 +2,7 @@
 
 #include "render/preintegration.hpp"
 #include "render/transfer_table.hpp"
+#include "shared/visible_runs.h"
 
 #include <algorithm>
 #include <cmath>
@@ -130,6 +131,33 @@ bool VisibleValues::anyIn(float lo, float hi) const {
     const int first = std::clamp(static_cast<int>(std::floor(lo * last)), 0, int(last));
     const int end = std::clamp(static_cast<int>(std::ceil(hi * last)), 0, int(last)) + 1;
     return m_firstFrom[std::size_t(first)] < end;
+}
+
+VisibleValues::Runs VisibleValues::runs() const {
+    const int bins = static_cast<int>(m_firstFrom.size()) - 1;
+    std::vector<glm::ivec2> runs; // [lo, hi) of each run of visible bins, in order
+    for (int i = m_firstFrom[0]; i < bins;) {
+        int end = i;
+        while (end < bins && m_firstFrom[std::size_t(end)] == end)
+            ++end;
+        runs.push_back({i, end});
+        i = m_firstFrom[std::size_t(end)];
+    }
+    while (runs.size() > CW_VISIBLE_RUNS) { // join the two runs with the narrowest gap
+        std::size_t narrowest = 0;
+        for (std::size_t r = 1; r + 1 < runs.size(); ++r)
+            if (runs[r + 1].x - runs[r].y < runs[narrowest + 1].x - runs[narrowest].y)
+                narrowest = r;
+        runs[narrowest].y = runs[narrowest + 1].y;
+        runs.erase(runs.begin() + std::ptrdiff_t(narrowest) + 1);
+    }
+    Runs result;
+    result.bins = bins;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        result.lo[int(r)] = runs[r].x;
+        result.hi[int(r)] = runs[r].y;
+    }
+    return result;
 }
 
 BrickOccupancy brickOccupancy(const SpanGrid& bricks, const Box& box, glm::dvec3 spacing,

@@ -39,8 +39,19 @@ public:
     bool anyIn(float lo, float hi) const;
     /// Per bin i, the first visible bin from i on (the bin count when none;
     /// one entry more, for i = the bin count), so anyIn is
-    /// firstFrom[first] < end: what the ray caster reads, one read per slab.
+    /// firstFrom[first] < end (runs() gives the ray caster the same).
     const std::vector<int>& firstFrom() const { return m_firstFrom; }
+    /// The visible bins as at most CW_VISIBLE_RUNS runs [lo[i], hi[i]), the
+    /// others empty (0, 0), for the ray caster's runsMayShow
+    /// (shaders/shared/visible_runs.h), which then answers as anyIn. More
+    /// runs than that are joined across the narrowest gaps between them: the
+    /// test then also passes slabs whose bins show nothing (they classify to
+    /// no opacity, so the image is the same), and still every one that shows.
+    struct Runs {
+        glm::ivec4 lo{0}, hi{0};
+        int bins = 0;
+    };
+    Runs runs() const;
 
 private:
     std::vector<int> m_firstFrom;

@@ -200,12 +200,14 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
                              const VisibleValues& visible, uint64_t occupancySerial, int margin) {
     const std::pair<uint64_t, int> key(occupancySerial, margin);
     if (m_cells.distance.image && m_cells.key == key) return;
-    const std::vector<int>& firstFrom = visible.firstFrom();
-    const VkDeviceSize visibleBytes = firstFrom.size() * sizeof(int);
-    if (m_visible.size != visibleBytes)
+    // The shader's Visible block (std430): ivec4 lo, ivec4 hi, int bins.
+    const VisibleValues::Runs runs = visible.runs();
+    const int words[9] = {runs.lo.x, runs.lo.y, runs.lo.z, runs.lo.w, runs.hi.x,
+                          runs.hi.y, runs.hi.z, runs.hi.w, runs.bins};
+    if (!m_visible.buffer)
         m_visible =
-            gpu::createBuffer(m_ctx, visibleBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    std::memcpy(m_visible.mapped, firstFrom.data(), visibleBytes);
+            gpu::createBuffer(m_ctx, sizeof words, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    std::memcpy(m_visible.mapped, words, sizeof words);
     m_cells.distance = {}; // freed before its successor is made
     // Without the scan on the host: one occupied cell, the whole box.
     RayCells cells{glm::ivec3(1), {1}, {0}, glm::ivec3(0), glm::ivec3(1)};

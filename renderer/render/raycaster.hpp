@@ -120,7 +120,7 @@ private:
     gpu::PipelineLayoutHandle m_operatorLayout; ///< set 0, then one set per operator slot
     std::map<std::pair<SliceVariant, std::vector<int>>, gpu::PipelineHandle> m_pipelines;
     gpu::Buffer m_operatorUniforms; ///< CW_RAY_MAX_OPERATORS OperatorUniforms, host-mapped
-    gpu::Buffer m_visible;          ///< VisibleValues::firstFrom of the cells' classification
+    gpu::Buffer m_visible;          ///< VisibleValues::runs of the cells' classification
     struct Cells {
         gpu::Image distance;                ///< R8_UINT, RayCells::distance
         glm::vec4 perTexture{0.0f};         ///< xyz: cells across the texture; w: the longest slab

@@ -35,6 +35,7 @@
 #include "glsl/sample_common.h"
 #endif
 #include "shared/tile_order.h"
+#include "shared/visible_runs.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 // The census (SliceRenderer::setCensus, bench --census): the target receives,
@@ -63,13 +64,19 @@ void composite(vec4 c, float code, inout vec4 sum, inout float id) {
 // distance) is empty: each sample there, and each slab up to the margin long
 // that starts there, is transparent.
 layout(set = 0, binding = 6, r8ui) uniform readonly uimage3D cellImage;
-// Which bins of the classification tables any layer shows (VisibleValues,
-// render/occupancy.hpp): firstVisibleFrom[i] is the first visible bin from
-// bin i on (the bin count when none). Transparent runs ask only that; the
-// table is read once a slab may show.
+// Which bins of the classification tables any layer shows, as runs
+// (VisibleValues::runs, render/occupancy.hpp; shared/visible_runs.h).
+// Transparent runs ask only that; the table is read once a slab may show.
 layout(std430, set = 0, binding = 13) readonly buffer Visible {
-    int firstVisibleFrom[];
+    ivec4 visibleLo;
+    ivec4 visibleHi;
+    int visibleBins;
 };
+// The runs, read at the start of main while every lane runs it: lavapipe
+// then reads each word once, where a read in the march's loops is made lane
+// by lane (a lane may have left).
+ivec4 runLo, runHi;
+int runBins;
 layout(push_constant) uniform Ray {
     mat4 clipToWorld;
     vec4 boxLo; // the occupied cells' bounds (world, mm)
@@ -157,16 +164,11 @@ float stepsOverEmpty(vec3 tc, vec3 cellStep, vec3 invCellStep, bool slabsInMargi
 
 // Whether a slab from value `front` to `back` may show: some bin of the table
 // between them (and their neighbours: the lookup filters) is visible for
-// some classification. Conservative where the lookup is exact; it costs one
-// buffer read instead of a filtered texture fetch (lavapipe reads a buffer
-// lane by lane, so one read instead of the two of prefix counts saves a
-// few per cent of a frame).
+// some classification. Conservative where the lookup is exact, and where
+// the runs join gaps (VisibleValues::runs); arithmetic instead of a table
+// read per sample (docs/performance.md, "The visible bins as runs").
 bool mayShow(float front, float back) {
-    int bins = firstVisibleFrom.length() - 1;
-    float last = float(bins - 1);
-    int first = clamp(int(floor(min(front, back) * last)), 0, bins - 1);
-    int end = clamp(int(ceil(max(front, back) * last)), 0, bins - 1) + 1;
-    return firstVisibleFrom[first] < end;
+    return runsMayShow(runLo, runHi, runBins, front, back);
 }
 
 #ifdef CW_YIELD_LANES
@@ -455,6 +457,9 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
 #endif
 
 void main() {
+    runLo = visibleLo;
+    runHi = visibleHi;
+    runBins = visibleBins;
     // Workgroups take rows of tiles in an order that spreads each core's
     // share over the image, and each 8 invocations a 4x2 block of pixels
     // (shared/tile_order.h).

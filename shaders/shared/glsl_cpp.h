@@ -13,6 +13,7 @@
 namespace cutaway::shader {
 using glm::ivec2;
 using glm::ivec3;
+using glm::ivec4;
 using glm::mat3;
 using glm::mat4;
 using glm::uvec2;
@@ -21,6 +22,7 @@ using glm::vec3;
 using glm::vec4;
 using uint = std::uint32_t;
 using glm::abs;
+using glm::any;
 using glm::atan; // atan(y, x) is GLSL's two-argument arc tangent (std::atan2)
 using glm::ceil;
 using glm::clamp;
@@ -30,6 +32,7 @@ using glm::dot;
 using glm::floor;
 using glm::inverse;
 using glm::length;
+using glm::lessThan;
 using glm::max;
 using glm::min;
 using glm::mix;

@@ -8,6 +8,7 @@
 #include "render/preintegration.hpp"
 #include "render/ray_cells.hpp"
 #include "render/transfer_table.hpp"
+#include "shared/visible_runs.h"
 #include "volume/volume.hpp"
 
 #include <algorithm>
@@ -111,6 +112,63 @@ TEST(VisibleValues, CoverEverySampleTheTablesShow) {
         }
         if (&tf == &functions[0]) {
             EXPECT_GT(missedByPost, 0) << "the narrow band must need the coarser table's bins";
+        }
+    }
+}
+
+// Visible in `count` narrow bands of values spread over the range.
+TransferFunction bands(int count) {
+    TransferFunction tf{{{0.0, glm::vec3(1.0f), 0.0f}}};
+    for (int i = 0; i < count; ++i) {
+        const double lo = 20.0 + 220.0 * i / count;
+        tf.points.push_back({lo, glm::vec3(1.0f), 0.0f});
+        tf.points.push_back({lo + 3.0, glm::vec3(1.0f), 0.5f});
+        tf.points.push_back({lo + 6.0, glm::vec3(1.0f), 0.0f});
+    }
+    tf.points.push_back({255.0, glm::vec3(1.0f), 0.0f});
+    return tf;
+}
+
+TEST(VisibleValues, RunsAnswerAsTheTableDoesAndJoinedRunsOnlyAddSlabs) {
+    // runsMayShow (the ray caster's test) against anyIn (the table of first
+    // visible bins): the same answer for up to CW_VISIBLE_RUNS runs; with more,
+    // every slab anyIn passes and some it does not (the joined gaps).
+    const std::vector<std::pair<TransferFunction, int>> cases{{band(100.0, 104.0), 1},
+                                                              {band(40.0, 200.0), 1},
+                                                              {bands(2), 2},
+                                                              {bands(4), 4},
+                                                              {bands(7), 7}};
+    for (const auto& [tf, expectedRuns] : cases) {
+        for (const bool preintegrated : {false, true}) {
+            const render::VisibleValues visible({&tf}, kWindow, preintegrated);
+            const render::VisibleValues::Runs runs = visible.runs();
+            int count = 0, previousEnd = -1;
+            for (int r = 0; r < CW_VISIBLE_RUNS; ++r) {
+                if (runs.lo[r] == runs.hi[r]) continue;
+                ++count;
+                EXPECT_LT(runs.lo[r], runs.hi[r]);
+                EXPECT_GT(runs.lo[r], previousEnd) << "runs in order, apart";
+                previousEnd = runs.hi[r];
+            }
+            EXPECT_EQ(count, std::min(expectedRuns, CW_VISIBLE_RUNS)) << expectedRuns;
+            EXPECT_EQ(runs.bins, static_cast<int>(visible.firstFrom().size()) - 1);
+            int onlyRuns = 0;
+            const int steps = 1500;
+            for (int i = 0; i <= steps; ++i)
+                for (int j = std::max(0, i - 30); j <= std::min(steps, i + 30); j += 3) {
+                    const float a = float(i) / float(steps), b = float(j) / float(steps);
+                    const bool exact = visible.anyIn(std::min(a, b), std::max(a, b));
+                    const bool viaRuns = shader::runsMayShow(runs.lo, runs.hi, runs.bins, a, b);
+                    if (exact) {
+                        EXPECT_TRUE(viaRuns) << a << ", " << b;
+                    } else if (expectedRuns <= CW_VISIBLE_RUNS) {
+                        EXPECT_FALSE(viaRuns) << a << ", " << b;
+                    }
+                    onlyRuns += viaRuns && !exact ? 1 : 0;
+                }
+            if (expectedRuns > CW_VISIBLE_RUNS) {
+                EXPECT_GT(onlyRuns, 0) << "joined runs must cover a gap";
+            }
         }
     }
 }
