@@ -20,7 +20,7 @@ struct RayPush { // matches the push constants of shaders/glsl/ray_march.h
     glm::vec4 boxLo;
     glm::vec4 boxHi;
     glm::vec4 cellsPerTexture; // w: the longest slab the cells cover, in voxels
-    std::uint32_t rowStride;   // shared/tile_order.h
+    std::uint32_t bandStride;  // shared/tile_order.h
     std::uint32_t tileOffset;  // the dispatch's first tile, x | y << 16
     std::uint32_t operatorTilesLo, operatorTilesHi; // the operators' tiles, [lo, hi)
 };
@@ -250,7 +250,7 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
                  glm::vec4(glm::vec3(m_cells.bounds.lo), 0.0f),
                  glm::vec4(glm::vec3(m_cells.bounds.hi), 0.0f),
                  m_cells.perTexture,
-                 shader::tileRowStride(groups.y),
+                 shader::tileBandStride(groups.y),
                  0u,
                  packTile(opTiles.lo),
                  packTile(opTiles.hi)};
@@ -285,7 +285,7 @@ void Raycaster::recordOperators(VkCommandBuffer cmd, VkDescriptorSet set,
         sets.push_back(operators[i < operators.size() ? i : 0].set);
     const VkPipelineLayout layout = m_operatorLayout.get();
     const glm::uvec2 groups = tiles.hi - tiles.lo;
-    push.rowStride = shader::tileRowStride(groups.y);
+    push.bandStride = shader::tileBandStride(groups.y);
     push.tileOffset = packTile(tiles.lo);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineFor(variant, alignments));
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0,

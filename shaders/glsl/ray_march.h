@@ -83,7 +83,7 @@ layout(push_constant) uniform Ray {
     vec4 boxHi;
     vec4 cellsPerTexture; // xyz: cells across the texture, the last one partial;
                           // w: the longest slab they cover (voxels along each axis)
-    uint rowStride;       // the order of the tiles' rows: shared/tile_order.h
+    uint bandStride;      // the order of the tiles' bands: shared/tile_order.h
     uint tileOffset;      // the dispatch's first tile: x | y << 16
     uint operatorTilesLo; // the tiles the rays of the operators' boxes cross,
     uint operatorTilesHi; // [lo, hi) (x | y << 16), which the shader with
@@ -460,11 +460,11 @@ void main() {
     runLo = visibleLo;
     runHi = visibleHi;
     runBins = visibleBins;
-    // Workgroups take rows of tiles in an order that spreads each core's
+    // Workgroups take bands of tiles in an order that spreads each core's
     // share over the image, and each 8 invocations a 4x2 block of pixels
     // (shared/tile_order.h).
-    uint tileRow = tileRowOf(gl_WorkGroupID.y, gl_NumWorkGroups.y, ray.rowStride);
-    uvec2 tile = uvec2(gl_WorkGroupID.x, tileRow) + unpackTile(ray.tileOffset);
+    uvec2 tile =
+        tileOf(gl_WorkGroupID.xy, gl_NumWorkGroups.xy, ray.bandStride) + unpackTile(ray.tileOffset);
 #ifndef CW_RAY_OPERATORS
     // Frames with operators run this shader over the image but the tiles
     // their boxes may cover (Raycaster::record). lavapipe runs every part of

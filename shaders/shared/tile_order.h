@@ -1,11 +1,14 @@
-// The order in which the ray caster's workgroups take the image's rows of
-// 8x8-pixel tiles, and its invocations a tile's pixels. lavapipe (Mesa 22.3, lp_cs_tpool) gives
-// each of its N threads one contiguous Nth of a dispatch's workgroups: in image order one core
-// would march the top half of the picture and the other the bottom half, and a head whose skull
-// fills one half keeps one core idle while the other finishes. Workgroup row g takes tile row (g *
-// stride) mod rows instead, with a stride near rows / golden ratio and coprime with rows: a
-// permutation under which every contiguous share of the workgroups is spread over the whole image.
-// A GPU schedules workgroups dynamically and does not care.
+// The order in which the ray caster's workgroups take the image's 8x8-pixel tiles, and its
+// invocations a tile's pixels. lavapipe (Mesa 22.3, lp_cs_tpool) gives each of its N threads one
+// contiguous Nth of a dispatch's workgroups (x fastest), which it marches in order: in image
+// order one core would march the top half of the picture and the other the bottom half, and a
+// head whose skull fills one half keeps one core idle while the other finishes. So the tile rows
+// go in bands of CW_TILE_BAND, and workgroup band g takes tile band (g * stride) mod bands, with a
+// stride near bands / golden ratio and coprime with their count: a permutation under which every
+// contiguous share of the workgroups is spread over the whole image. Within a band the tiles go
+// column by column, so a tile's neighbour below is marched right after it, while the volume's
+// texels their rays share are still in the core's caches (in rows, a whole row of tiles
+// apart). A GPU schedules workgroups dynamically and does not care.
 #ifndef CUTAWAY_TILE_ORDER_H
 #define CUTAWAY_TILE_ORDER_H
 
@@ -22,20 +25,42 @@ CW_FUNC uint greatestCommonDivisor(uint a, uint b) {
     return a;
 }
 
-// The whole number nearest rows / golden ratio that is coprime with `rows`
-// (at least 1): the host computes it once per frame.
-CW_FUNC uint tileRowStride(uint rows) {
-    uint nearest = uint(float(rows) * 0.618034f + 0.5f);
-    for (uint d = 0u; d <= rows; ++d) {
-        if (nearest > d && greatestCommonDivisor(nearest - d, rows) == 1u) return nearest - d;
-        if (greatestCommonDivisor(nearest + d, rows) == 1u) return nearest + d;
+// Tile rows per band: 2 measured 3-5 % faster than rows alone on ct_head and
+// the frog, 4 about as fast, 8 slower (docs/performance.md, "Tiles in bands").
+#define CW_TILE_BAND 2u
+
+// The whole number nearest count / golden ratio that is coprime with `count`
+// (at least 1): the host computes it once per dispatch, for the full bands.
+CW_FUNC uint spreadStride(uint count) {
+    uint nearest = uint(float(count) * 0.618034f + 0.5f);
+    for (uint d = 0u; d <= count; ++d) {
+        if (nearest > d && greatestCommonDivisor(nearest - d, count) == 1u) return nearest - d;
+        if (greatestCommonDivisor(nearest + d, count) == 1u) return nearest + d;
     }
     return 1u;
 }
 
-// The tile row that workgroup row `group` (of `rows`) renders.
-CW_FUNC uint tileRowOf(uint group, uint rows, uint stride) {
-    return (group * stride) % rows;
+// The item that position `position` (of `count`) takes: a permutation when
+// `stride` is coprime with `count`.
+CW_FUNC uint spreadOrder(uint position, uint count, uint stride) {
+    return (position * stride) % count;
+}
+
+// The stride that tileOf takes for a dispatch `groups` tiles high.
+CW_FUNC uint tileBandStride(uint rows) {
+    return spreadStride(rows / CW_TILE_BAND);
+}
+
+// The tile, relative to the dispatch's first, that workgroup `group` of
+// `groups` renders: the full bands in the spread order, a partial band (the
+// last CW_TILE_BAND - 1 rows or fewer) last; within a band, column by column.
+CW_FUNC uvec2 tileOf(uvec2 group, uvec2 groups, uint stride) {
+    uint full = groups.y / CW_TILE_BAND;
+    uint position = group.y / CW_TILE_BAND;
+    uint band = position < full ? spreadOrder(position, full, stride) : position;
+    uint height = min(CW_TILE_BAND, groups.y - band * CW_TILE_BAND);
+    uint offset = (group.y - position * CW_TILE_BAND) * groups.x + group.x;
+    return uvec2(offset / height, band * CW_TILE_BAND + offset % height);
 }
 
 // The pixel of an 8x8 tile that invocation `local` (its gl_LocalInvocationID)
