@@ -25,7 +25,7 @@ CW_FUNC uint greatestCommonDivisor(uint a, uint b) {
     return a;
 }
 
-// Tile rows per band: 2 measured 3-5 % faster than rows alone on ct_head and
+// Tile rows per band: 2 measured 3-6 % faster than rows alone on ct_head and
 // the frog, 4 about as fast, 8 slower (docs/performance.md, "Tiles in bands").
 #define CW_TILE_BAND 2u
 
