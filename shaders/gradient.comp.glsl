@@ -17,9 +17,21 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = 0) uniform sampler3D volumeTex;
 layout(set = 0, binding = 1, rgba8_snorm) uniform writeonly image3D gradientImage;
+// The values read as the storage image they also are (bake::ValueStorageBindings):
+// 0: sampled; 1: the R8 image volumeImage8; 2: the R16 one, volumeImage16.
+// On lavapipe a texel fetch of a sampled 8- or 16-bit image is a call,
+// imageLoad an inline load (as for the renderers, sample_common.h).
+layout(constant_id = 0) const int cwStorageFetch = 0;
+layout(set = 0, binding = 2, r8) uniform readonly image3D volumeImage8;
+layout(set = 0, binding = 3, r16) uniform readonly image3D volumeImage16;
 layout(push_constant) uniform Push { GradientParams params; };
 
-float at(ivec3 p) { return texelFetch(volumeTex, clamp(p, ivec3(0), params.dims - 1), 0).r; }
+float at(ivec3 p) {
+    ivec3 q = clamp(p, ivec3(0), params.dims - 1);
+    if (cwStorageFetch == 1) return imageLoad(volumeImage8, q).r;
+    if (cwStorageFetch == 2) return imageLoad(volumeImage16, q).r;
+    return texelFetch(volumeTex, q, 0).r;
+}
 
 // Plane k of the window (0: z - 1, 1: z, 2: z + 1), column i (x - 1 + i):
 // the value smoothed along y ([1 2 1]) and its central difference along y.

@@ -6,19 +6,34 @@
 #include "shared/gradient.h"
 
 #include <algorithm>
+#include <array>
 
 namespace cutaway::bake {
 
-GradientBaker::GradientBaker(const gpu::Context& ctx) : m_ctx(ctx) {
+GradientBaker::GradientBaker(const gpu::Context& ctx) : m_ctx(ctx), m_valueBindings(ctx) {
+    const auto compute = VK_SHADER_STAGE_COMPUTE_BIT;
     m_setLayout = gpu::createSetLayout(
-        ctx,
-        {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-         {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr}});
-    m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::GradientParams),
-                                         VK_SHADER_STAGE_COMPUTE_BIT);
-    auto module = gpu::createShaderModule(ctx, gradient_comp_spv, sizeof(gradient_comp_spv));
-    m_pipeline = gpu::createComputePipeline(ctx, m_layout.get(), module.get());
+        ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, nullptr},
+              {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+              {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+              {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
+    m_layout =
+        gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::GradientParams), compute);
+    m_module = gpu::createShaderModule(ctx, gradient_comp_spv, sizeof(gradient_comp_spv));
     m_sampler = gpu::createLinearSampler(ctx);
+    setStorageFetch(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
+}
+
+VkPipeline GradientBaker::pipelineFor(int fetch) const {
+    const std::lock_guard<std::mutex> lock(m_pipelinesMutex);
+    if (!m_pipelines[fetch]) {
+        const int32_t constant = fetch;
+        const VkSpecializationMapEntry entry{0, 0, sizeof constant};
+        const VkSpecializationInfo info{1, &entry, sizeof constant, &constant};
+        m_pipelines[fetch] =
+            gpu::createComputePipeline(m_ctx, m_layout.get(), m_module.get(), &info);
+    }
+    return m_pipelines[fetch].get();
 }
 
 GradientLayout gradientLayoutFor(const gpu::Context& ctx, glm::ivec3 dims) {
@@ -46,11 +61,15 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing,
                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
-        {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
+        {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}});
     gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
                               values.view.get(), kValuesLayout, m_sampler.get());
     gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
                               VK_IMAGE_LAYOUT_GENERAL);
+    const std::array<VkImageView, 2> storage = m_valueBindings.views(values);
+    for (uint32_t i = 0; i < 2; ++i)
+        gpu::writeImageDescriptor(m_ctx, set.set, 2 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                                  storage[i], kValuesLayout);
 
     shader::GradientParams params{};
     params.dims = dims;
@@ -59,7 +78,8 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing,
     params.halfInvSpacing = glm::vec3(0.5 / spacing);
 
     // The groups cover the grid (kRun wide, kColumn deep), not the bricked image.
-    gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &params,
+    const int fetch = m_storageFetch ? ValueStorageBindings::fetchOf(values) : 0;
+    gpu::computeIntoImage(m_ctx, out, pipelineFor(fetch), m_layout.get(), set.set, &params,
                           sizeof(params), glm::uvec3(8 * 4, 8, 16), kGradientsLayout,
                           glm::uvec3(dims));
     return out;

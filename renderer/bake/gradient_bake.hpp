@@ -2,11 +2,13 @@
 // The gradient bake: one compute dispatch over the volume texture writes an
 // RGBA8_SNORM texture of (unit gradient direction, magnitude); see
 // shaders/shared/gradient.h for the encoding.
+#include "bake/volume_upload.hpp"
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
 #include "gpu/resources.hpp"
 
 #include <glm/glm.hpp>
+#include <mutex>
 
 namespace cutaway::bake {
 
@@ -34,12 +36,27 @@ public:
     /// The same, in gradientLayoutFor's layout.
     gpu::Image bake(const gpu::Image& values, glm::dvec3 spacing) const;
 
+    /// Whether the bake reads the values as a storage image (an inline load
+    /// on lavapipe) instead of sampling them: on by default on CPU devices,
+    /// off on GPUs; only where the device can (DeviceFormats::storageValues).
+    /// The texels are the same either way.
+    void setStorageFetch(bool on) { m_storageFetch = on && m_ctx.formats().storageValues; }
+    bool storageFetch() const { return m_storageFetch; }
+
 private:
+    /// The pipeline for cwStorageFetch `fetch` (0 sampled, 1 R8, 2 R16),
+    /// made on first use (a device uses one or two of the three).
+    VkPipeline pipelineFor(int fetch) const;
+
     const gpu::Context& m_ctx;
     gpu::DescriptorSetLayoutHandle m_setLayout;
     gpu::PipelineLayoutHandle m_layout;
-    gpu::PipelineHandle m_pipeline;
+    gpu::ShaderModuleHandle m_module;
+    mutable std::mutex m_pipelinesMutex; ///< bake() may be called from several threads
+    mutable gpu::PipelineHandle m_pipelines[3];
     gpu::SamplerHandle m_sampler;
+    ValueStorageBindings m_valueBindings;
+    bool m_storageFetch = false;
 };
 
 } // namespace cutaway::bake

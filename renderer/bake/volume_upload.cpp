@@ -134,6 +134,23 @@ gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWind
         ctx.formats().storageValues ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
 }
 
+ValueStorageBindings::ValueStorageBindings(const gpu::Context& ctx) : m_ctx(ctx) {
+    const bool storage = ctx.formats().storageValues;
+    const VkFormat format[2] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
+                                storage ? VK_FORMAT_R16_UNORM : VK_FORMAT_R8G8B8A8_UNORM};
+    const uint32_t zero = 0;
+    for (int i = 0; i < 2; ++i)
+        m_standIns[i] = gpu::createStorageVolume(
+            ctx, format[i], {1, 1, 1}, &zero, storage ? std::size_t(i + 1) : sizeof zero,
+            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+}
+
+std::array<VkImageView, 2> ValueStorageBindings::views(const gpu::Image& values) const {
+    std::array<VkImageView, 2> views{m_standIns[0].view.get(), m_standIns[1].view.get()};
+    if (m_ctx.formats().storageValues) views[fetchOf(values) - 1] = values.view.get();
+    return views;
+}
+
 gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims) {
     if (mask.size() != std::size_t(dims.x) * dims.y * dims.z)
         throw RuntimeError("uploadMask: the mask does not match its dimensions");

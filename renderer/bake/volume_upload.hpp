@@ -7,6 +7,7 @@
 #include "gpu/resources.hpp"
 #include "volume/volume.hpp"
 
+#include <array>
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <vector>
@@ -54,6 +55,28 @@ inline constexpr VkImageLayout kValuesLayout = VK_IMAGE_LAYOUT_GENERAL;
 /// a storage image too; left in kValuesLayout, readable by fragment and
 /// compute shaders.
 gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window);
+
+/// What a shader that reads the values as a storage image binds. GLSL fixes
+/// a storage image's format in its declaration, so such a shader declares an
+/// R8 and an R16 binding and a specialization constant picks the one it loads
+/// (sample_common.h's cwStorageFetch); both need an image. The stand-ins are
+/// 1^3 images of those formats, or RGBA8 (never read) where the values are no
+/// storage images (DeviceFormats::storageValues).
+class ValueStorageBindings {
+public:
+    explicit ValueStorageBindings(const gpu::Context& ctx);
+    /// The views for the R8 and the R16 binding: `values` (from uploadVolume)
+    /// in the one of its format where the device can, a stand-in in the other.
+    std::array<VkImageView, 2> views(const gpu::Image& values) const;
+    /// cwStorageFetch's value for `values`: 1 for R8, 2 for R16.
+    static int fetchOf(const gpu::Image& values) {
+        return values.format == VK_FORMAT_R8_UNORM ? 1 : 2;
+    }
+
+private:
+    const gpu::Context& m_ctx;
+    gpu::Image m_standIns[2];
+};
 
 /// A 0/1 mask (one byte per voxel, x fastest) as an R8_UNORM 3D image that
 /// samples 0 or 1, like uploadVolume over the window [0, 1] at an eighth of

@@ -91,13 +91,10 @@ Image readImage(const gpu::Context& ctx, const gpu::Buffer& readback, int width,
 } // namespace
 
 std::array<VkImageView, 2> SliceRenderer::valueImages(const GpuVolume& volume) const {
-    std::array<VkImageView, 2> views{m_valueStandIns[0].view.get(), m_valueStandIns[1].view.get()};
-    if (m_ctx.formats().storageValues)
-        views[volume.values.format == VK_FORMAT_R8_UNORM ? 0 : 1] = volume.values.view.get();
-    return views;
+    return m_valueBindings.views(volume.values);
 }
 
-SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
+SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_valueBindings(ctx) {
     m_sampler = gpu::createLinearSampler(ctx);
     m_nearest = gpu::createNearestSampler(ctx);
     const auto frag = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -113,14 +110,6 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx) {
     const bool cpuDevice = ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     setStorageFetch(cpuDevice);
     setYieldLanes(cpuDevice);
-    const bool storage = ctx.formats().storageValues;
-    const VkFormat standIn[2] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
-                                 storage ? VK_FORMAT_R16_UNORM : VK_FORMAT_R8G8B8A8_UNORM};
-    const uint32_t zero = 0;
-    for (int i = 0; i < 2; ++i)
-        m_valueStandIns[i] = gpu::createStorageVolume(
-            ctx, standIn[i], {1, 1, 1}, &zero, storage ? std::size_t(i + 1) : sizeof zero,
-            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     // An operator's set: read by its slicing shader and by the ray caster.
     const auto fragOrCompute = frag | VK_SHADER_STAGE_COMPUTE_BIT;
     m_operatorSetLayout = gpu::createSetLayout(
@@ -511,7 +500,7 @@ Image SliceRenderer::render(const Scene& scene, const GpuVolume& volume) {
     variant.shading = scene.render.shading.enabled;
     variant.lights =
         static_cast<int>(std::min<std::size_t>(scene.lights.directional.size(), CW_MAX_LIGHTS));
-    if (m_storageFetch) variant.storageFetch = volume.values.format == VK_FORMAT_R8_UNORM ? 1 : 2;
+    if (m_storageFetch) variant.storageFetch = bake::ValueStorageBindings::fetchOf(volume.values);
     variant.brickedGradients = volume.gradientLayout == bake::GradientLayout::Bricked;
     variant.wholeShininess = wholeShininess(scene.render.shading);
     if (raycast) {

@@ -172,10 +172,8 @@ private:
     bool m_storageFetch = false;
     bool m_yieldLanes = false;
     bool m_census = false;
-    /// 1^3 stand-ins for the value storage images (bindings 15, R8, and 16,
-    /// R16): the binding of the other format, or both where the values are
-    /// no storage images (DeviceFormats::storageValues; then RGBA8, never read).
-    gpu::Image m_valueStandIns[2];
+    /// The values' storage bindings 15 (R8) and 16 (R16) and their stand-ins.
+    bake::ValueStorageBindings m_valueBindings;
     gpu::Image m_noSkipping; ///< the ray caster's blocks when skipping is off: one, active
     /// What each proxy of the frame is: operator `op`'s stencil box or one of
     /// its regions, or (op < 0) a box of the volume's occupied bricks.

@@ -104,6 +104,44 @@ TEST_F(GpuTest, BrickedGradientsHoldTheGridsTexels) {
     EXPECT_GT(nonZero, a.size() / 2) << "the gradients must not all vanish";
 }
 
+// Reading the values as a storage image (the default on CPU devices) bakes
+// the same texels to the bit as sampling them, for R8 and R16 values, in
+// both layouts; the grid's sides are not multiples of the runs or columns.
+TEST_F(GpuTest, StorageFetchBakesTheSameGradientsAsSampling) {
+    if (!ctx().formats().storageValues) GTEST_SKIP() << "the device cannot store R8 and R16 images";
+    const glm::ivec3 dims(37, 29, 21);
+    const glm::dvec3 spacing(0.9, 1.1, 1.7);
+    const Volume wide = randomVolume(dims, spacing, 3);
+    Volume narrow = Volume::allocate(dims, VoxelType::U8, spacing); // R8 over [0, 255]
+    for (std::size_t i = 0; i < narrow.voxelCount(); ++i)
+        narrow.data[i] = std::byte(reinterpret_cast<const uint16_t*>(wide.data.data())[i] >> 8);
+    const ValueRange range = valueRange(wide);
+    const std::pair<const Volume*, bake::ValueWindow> cases[] = {{&wide, {range.min, range.max}},
+                                                                 {&narrow, {0.0, 255.0}}};
+    for (const auto& [volume, window] : cases) {
+        const gpu::Image values = bake::uploadVolume(ctx(), *volume, window);
+        SCOPED_TRACE(values.format == VK_FORMAT_R8_UNORM ? "R8" : "R16");
+        EXPECT_EQ(values.format, volume == &narrow ? VK_FORMAT_R8_UNORM : VK_FORMAT_R16_UNORM);
+        for (const bake::GradientLayout layout : kLayouts) {
+            bake::GradientBaker baker(ctx());
+            std::vector<int8_t> baked[2];
+            for (int storage = 0; storage < 2; ++storage) {
+                baker.setStorageFetch(storage == 1);
+                ASSERT_EQ(baker.storageFetch(), storage == 1);
+                baked[storage] =
+                    gridTexels(ctx(), baker.bake(values, spacing, layout), dims, layout);
+            }
+            std::size_t differ = 0, nonZero = 0;
+            for (std::size_t i = 0; i < baked[0].size(); ++i) {
+                differ += baked[0][i] != baked[1][i];
+                nonZero += baked[0][i] != 0;
+            }
+            EXPECT_EQ(differ, 0u);
+            EXPECT_GT(nonZero, baked[0].size() / 2) << "the gradients must not all vanish";
+        }
+    }
+}
+
 // Mirroring the volume in x mirrors its baked gradient to the bit: x
 // negated, the rest equal. The bake adds each voxel's two neighbours before
 // anything else, so rounding does not depend on the side, and a symmetric
