@@ -95,14 +95,16 @@ def turntable_lines(records):
                   f"(loading the scan, uploads, bakes); from there **{t['steady_fps']:.2f} fps "
                   f"sustained**." if "steady_fps" in t else "")
         if "single_fps_before" in t:
-            steady += (f" Single frames of the same scene timed just before and just after"
-                       f" the turntable: {t['single_fps_before']:.2f} and"
-                       f" {t['single_fps_after']:.2f} fps.")
+            views = (f"Its {t['single_views']} views rendered one by one without files"
+                     if "single_views" in t else "Single frames of the same scene")
+            steady += (f" {views}, timed just before and just after the turntable:"
+                       f" {t['single_fps_before']:.2f} and {t['single_fps_after']:.2f} fps.")
         out.append(f"Turntable: {t['dataset']}, surface-aligned operator, "
                    f"{t.get('method', 'slicing')}, d = 1.0, "
                    f"{t['frames']} frames written as {t['writes']}: {t['total_s']:.1f} s in all, "
                    f"{t['sustained_fps']:.2f} fps with the first frame's loading and bakes, "
-                   f"against {single:.2f} fps for single frames." + steady if single else "")
+                   f"against {single:.2f} fps for the table's single frames (the median view)."
+                   + steady if single else "")
         if t.get("write_costs"):
             out += ["", f"Writing one {t['width']}x{t['height']} frame of it (half floats, "
                     "`/output/compression`; each the median of 5 writes):", "",
