@@ -199,11 +199,11 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
         }
         volume.space = space.space;
         if (f.origin) {
-            const auto vectors = parseNrrdVectors(*f.origin, "space origin", ctx);
-            if (vectors.size() != 1 || !vectors[0]) {
+            const auto origins = parseNrrdVectors(*f.origin, "space origin", ctx);
+            if (origins.size() != 1 || !origins[0]) {
                 throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
             }
-            volume.origin = spatialPart(*vectors[0], space, "space origin", ctx);
+            volume.origin = spatialPart(*origins[0], space, "space origin", ctx);
             if (!std::isfinite(volume.origin.x) || !std::isfinite(volume.origin.y) ||
                 !std::isfinite(volume.origin.z)) {
                 throw InputError(ctx + ": 'space origin' is not finite");
@@ -228,12 +228,12 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
         // Without space directions the axes have no orientation in a space:
         // an origin is kept as written, for reference.
         if (f.origin) {
-            const auto vectors = parseNrrdVectors(*f.origin, "space origin", ctx);
-            if (vectors.size() != 1 || !vectors[0]) {
+            const auto origins = parseNrrdVectors(*f.origin, "space origin", ctx);
+            if (origins.size() != 1 || !origins[0]) {
                 throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
             }
-            for (std::size_t a = 0; a < std::min<std::size_t>(3, vectors[0]->size()); ++a) {
-                volume.origin[static_cast<int>(a)] = (*vectors[0])[a];
+            for (std::size_t a = 0; a < std::min<std::size_t>(3, origins[0]->size()); ++a) {
+                volume.origin[static_cast<int>(a)] = (*origins[0])[a];
             }
         }
     }

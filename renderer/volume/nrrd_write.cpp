@@ -46,8 +46,16 @@ std::string header(const Volume& volume, bool gzip) {
         // the direction of each index axis scaled by its spacing.
         const auto vector = [](glm::dvec3 v) {
             v += 0.0; // -0 as 0
-            return "(" + formatDouble(v.x) + "," + formatDouble(v.y) + "," + formatDouble(v.z) +
-                   ")";
+            // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, its
+            // bug 105329) of "(" + std::string once this is inlined.
+            std::string text(1, '(');
+            text += formatDouble(v.x);
+            text += ',';
+            text += formatDouble(v.y);
+            text += ',';
+            text += formatDouble(v.z);
+            text += ')';
+            return text;
         };
         if (volume.space == Space::LPS)
             out << "space: left-posterior-superior\n";

@@ -79,16 +79,6 @@ gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& objec
 }
 
 /// R16F texels back as floats.
-std::vector<float> downloadField(const gpu::Context& ctx, const gpu::Image& image) {
-    EXPECT_EQ(image.format, VK_FORMAT_R16_SFLOAT);
-    std::vector<std::byte> bytes = gpu::downloadImage(ctx, image, bake::kFeatureLayout, 2);
-    std::vector<float> out(bytes.size() / 2);
-    const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
-    for (std::size_t i = 0; i < out.size(); ++i)
-        out[i] = glm::unpackHalf1x16(halves[i]);
-    return out;
-}
-
 /// The direction the operator shader takes from a baked field at a voxel
 /// (featureDirection in glsl/slice_operator.h): featureGradientOf over its
 /// neighbours, clamped to the grid.
@@ -113,8 +103,6 @@ struct DistanceCase {
 class DistanceField : public GpuTest {};
 class SegmentMask : public GpuTest {};
 
-} // namespace
-
 TEST_F(DistanceField, MatchesBruteForce) {
     const glm::dvec3 spacing(0.7, 1.3, 2.0); // anisotropic: a swapped axis would show
     const DistanceCase cases[] = {{{17, 23, 11}, 0.02, 1},
@@ -129,7 +117,7 @@ TEST_F(DistanceField, MatchesBruteForce) {
         const std::vector<double> exact = bruteForceDistance(object, c.dims, spacing);
         gpu::Image values = uploadMask(ctx(), object, c.dims, spacing);
         const std::vector<float> field =
-            downloadField(ctx(), baker.distanceField(values, spacing, 0.5f));
+            downloadFeatureField(ctx(), baker.distanceField(values, spacing, 0.5f));
         const std::vector<float> cpu = bake::distanceFieldCpu(object, c.dims, spacing);
         ASSERT_EQ(field.size(), exact.size());
         int gpuBad = 0, cpuBad = 0;
@@ -162,7 +150,7 @@ TEST_F(DistanceField, ThresholdsNormalizedValues) {
     bake::FeatureBaker baker(ctx());
     gpu::Image values = bake::uploadVolume(ctx(), v, {0.0, 255.0});
     const std::vector<float> field =
-        downloadField(ctx(), baker.distanceField(values, spacing, 0.5f));
+        downloadFeatureField(ctx(), baker.distanceField(values, spacing, 0.5f));
     for (int x = 0; x < dims.x; ++x) {
         const double expected = x * 11 > 127.5 ? (x - 11) * spacing.x : 0.0; // 11 * 11 = 121
         EXPECT_NEAR(field[v.index(x, 1, 1)], expected, expected * 0x1p-10 + 1e-3) << x;
@@ -175,7 +163,7 @@ TEST_F(DistanceField, WithoutBackgroundIsLargeAndFlat) {
     bake::FeatureBaker baker(ctx());
     gpu::Image values = uploadMask(ctx(), object, dims, glm::dvec3(1.0));
     const std::vector<float> field =
-        downloadField(ctx(), baker.distanceField(values, glm::dvec3(1.0), 0.5f));
+        downloadFeatureField(ctx(), baker.distanceField(values, glm::dvec3(1.0), 0.5f));
     for (float t : field)
         EXPECT_EQ(t, 65504.0f);
     EXPECT_EQ(fieldDirection(field, dims, glm::dvec3(1.0), 2, 2, 1), glm::vec3(0.0f));
@@ -191,7 +179,7 @@ TEST_F(DistanceField, GradientPointsIntoTheObject) {
     bake::FeatureBaker baker(ctx());
     gpu::Image values = uploadMask(ctx(), object, dims, spacing);
     const std::vector<float> field =
-        downloadField(ctx(), baker.distanceField(values, spacing, 0.5f));
+        downloadFeatureField(ctx(), baker.distanceField(values, spacing, 0.5f));
     int checked = 0;
     for (int z = 0; z < dims.z; ++z)
         for (int y = 0; y < dims.y; ++y)
@@ -235,7 +223,7 @@ TEST_F(SegmentMask, MatchesCpuTwin) {
         for (double band : {0.0, 1.0, 3.0, 10.0, 40.0}) {
             SCOPED_TRACE(testing::Message() << "seed " << seed << " band " << band);
             const std::vector<float> field =
-                downloadField(ctx(), baker.segmentMask(indicator, dims, spacing, band));
+                downloadFeatureField(ctx(), baker.segmentMask(indicator, dims, spacing, band));
             const std::vector<float> cpu = bake::smoothMaskCpu(indicator, dims, spacing, band);
             ASSERT_EQ(field.size(), cpu.size());
             int bad = 0;
@@ -298,7 +286,7 @@ TEST_F(SegmentMask, GradientPointsIntoTheSegmentOnBothSides) {
     for (double band : {0.0, 2.0}) {
         SCOPED_TRACE(testing::Message() << "band " << band);
         const std::vector<float> field =
-            downloadField(ctx(), baker.segmentMask(indicator, dims, spacing, band));
+            downloadFeatureField(ctx(), baker.segmentMask(indicator, dims, spacing, band));
         for (int y = 0; y < dims.y; ++y)
             for (int x = 0; x < dims.x; ++x) {
                 EXPECT_LT(field[indexOf(dims, x, y, 5)], 0.5f); // outside
@@ -315,4 +303,5 @@ TEST_F(SegmentMask, GradientPointsIntoTheSegmentOnBothSides) {
     }
 }
 
+} // namespace
 } // namespace cutaway::test

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 #include <random>
 
@@ -37,18 +36,7 @@ float trilinear(const std::vector<float>& field, glm::ivec3 dims, glm::dvec3 at)
     return float(sum);
 }
 
-std::vector<float> downloadField(const gpu::Context& ctx, const gpu::Image& image) {
-    const std::vector<std::byte> bytes = gpu::downloadImage(ctx, image, bake::kFeatureLayout, 2);
-    std::vector<float> out(bytes.size() / 2);
-    const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
-    for (std::size_t i = 0; i < out.size(); ++i)
-        out[i] = glm::unpackHalf1x16(halves[i]);
-    return out;
-}
-
 class FieldRanges : public GpuTest {};
-
-} // namespace
 
 TEST(FieldRangesCpu, HoldEverySampleInTheirCell) {
     // Odd sizes: partial cells at the far faces; values of both signs.
@@ -104,7 +92,7 @@ TEST_F(FieldRanges, MatchTheirCpuTwin) {
     bake::FeatureBaker baker(ctx());
     const gpu::Image field =
         baker.distanceField(bake::uploadVolume(ctx(), v, {0.0, 255.0}), spacing, 0.5f);
-    const std::vector<float> texels = downloadField(ctx(), field);
+    const std::vector<float> texels = downloadFeatureField(ctx(), field);
     const bake::FieldRangeBaker ranges(ctx());
     for (int cellVoxels : {1, 2, 3}) {
         SCOPED_TRACE(cellVoxels);
@@ -123,4 +111,5 @@ TEST_F(FieldRanges, MatchTheirCpuTwin) {
     }
 }
 
+} // namespace
 } // namespace cutaway::test

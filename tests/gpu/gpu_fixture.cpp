@@ -1,11 +1,13 @@
 #include "gpu_fixture.hpp"
 
+#include "bake/feature_bake.hpp"
 #include "bake/gradient_bake.hpp"
 #include "job/render_job.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
 
 #include <cmath>
+#include <glm/gtc/packing.hpp>
 
 namespace cutaway::test {
 
@@ -50,6 +52,16 @@ Scene headScene(int phantomSize, int width, int height) {
     s.render.background = glm::vec4(0.0f);
     s.lights.directional.clear();
     return s;
+}
+
+std::vector<float> downloadFeatureField(const gpu::Context& ctx, const gpu::Image& image) {
+    EXPECT_EQ(image.format, VK_FORMAT_R16_SFLOAT);
+    const std::vector<std::byte> bytes = gpu::downloadImage(ctx, image, bake::kFeatureLayout, 2);
+    std::vector<float> out(bytes.size() / 2);
+    const auto* halves = reinterpret_cast<const uint16_t*>(bytes.data());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = glm::unpackHalf1x16(halves[i]);
+    return out;
 }
 
 Image renderVolume(const gpu::Context& ctx, const Scene& scene, const Volume& volume) {

@@ -2,6 +2,7 @@
 // Base of every test that touches a Vulkan device: one context per test with
 // the Khronos validation layer on; any validation message fails the test.
 #include "gpu/context.hpp"
+#include "gpu/resources.hpp"
 #include "io/image.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
@@ -81,6 +82,10 @@ nlohmann::json operatorPhantomDocument();
 /// operatorPhantomDocument: none, a surface-aligned peeler and a
 /// segment-aligned retractor.
 std::vector<nlohmann::json> phantomOperatorCases();
+
+/// A baked R16F field in the feature bakes' layout (distance field, segment
+/// mask, operator-region field), downloaded as floats in x-fastest order.
+std::vector<float> downloadFeatureField(const gpu::Context& ctx, const gpu::Image& image);
 
 /// Renders a scene to an image (loads its volume, prepares, renders).
 Image renderScene(const gpu::Context& ctx, const Scene& scene);

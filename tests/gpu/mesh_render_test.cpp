@@ -105,8 +105,6 @@ protected:
     Scene m_scene;
 };
 
-} // namespace
-
 TEST_F(MeshRenderTest, AMeshInFrontHidesTheVolumeAndOneBehindShowsThroughIt) {
     const Image volumeOnly = renderScene(ctx(), m_scene);
     for (const double y : {-40.0, 40.0}) { // in front of the volume box [-24, 24]^3, behind it
@@ -251,4 +249,5 @@ TEST_F(MeshRenderTest, TheRayCasterStopsAtTheMeshesAsTheSlicesDo) {
     }
 }
 
+} // namespace
 } // namespace cutaway::test

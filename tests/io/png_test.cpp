@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using test::TempDir;
-using Bytes = std::vector<std::uint8_t>;
+using PngBytes = std::vector<std::uint8_t>;
 
 std::uint32_t be32(const std::uint8_t* p) {
     return std::uint32_t{p[0]} << 24 | std::uint32_t{p[1]} << 16 | std::uint32_t{p[2]} << 8 | p[3];
@@ -31,7 +31,7 @@ struct Decoded {
     int width = 0, height = 0;
     std::vector<std::string> chunkTypes;
     std::vector<std::uint8_t> srgb; ///< sRGB chunk payload
-    Bytes rgba;                     ///< width * height * 4
+    PngBytes rgba;                  ///< width * height * 4
     std::vector<int> filters;       ///< each row's filter type
     std::vector<int> bestFilters;   ///< each row's filter of the least sum of |residual|
     const std::uint8_t* pixel(int x, int y) const {
@@ -48,12 +48,12 @@ int paeth(int a, int b, int c) {
 
 void decode(const fs::path& path, Decoded& out) {
     std::ifstream in(path, std::ios::binary);
-    const Bytes file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    const Bytes signature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    const PngBytes file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const PngBytes signature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     ASSERT_GE(file.size(), signature.size());
     ASSERT_TRUE(std::equal(signature.begin(), signature.end(), file.begin()));
 
-    Bytes idat;
+    PngBytes idat;
     std::size_t at = signature.size();
     while (at < file.size()) {
         ASSERT_LE(at + 12, file.size()) << "truncated chunk";
@@ -87,7 +87,7 @@ void decode(const fs::path& path, Decoded& out) {
     ASSERT_GT(out.height, 0);
 
     const std::size_t rowBytes = std::size_t(out.width) * 4;
-    Bytes raw((rowBytes + 1) * out.height);
+    PngBytes raw((rowBytes + 1) * out.height);
     uLongf rawSize = static_cast<uLongf>(raw.size());
     ASSERT_EQ(uncompress(raw.data(), &rawSize, idat.data(), static_cast<uLong>(idat.size())), Z_OK);
     ASSERT_EQ(rawSize, raw.size());

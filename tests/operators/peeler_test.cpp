@@ -70,7 +70,7 @@ bool liftedWithMargin(glm::vec3 p, const OperatorParams& o, float margin) {
 }
 
 // Even i: anywhere in the box; odd i: in the layer that is lifted.
-glm::vec3 samplePoint(Rng& rng, const OperatorParams& o, int i) {
+glm::vec3 samplePeelerPoint(Rng& rng, const OperatorParams& o, int i) {
     if (i % 2 == 0) return rng.inUnitBox();
     return rng.inBox(glm::vec3(hingeOf(o), -halfWidthOf(o), 1.0f - thicknessOf(o)),
                      glm::vec3(1.0f, halfWidthOf(o), 1.0f));
@@ -107,7 +107,7 @@ TEST(Peeler, BackwardUndoesForward) {
         float worst = 0.0f;
         int lifted = 0;
         for (int i = 0; i < 20000; ++i) {
-            const glm::vec3 p = samplePoint(rng, o, i);
+            const glm::vec3 p = samplePeelerPoint(rng, o, i);
             if (nearLayerBoundary(p, o, 1e-5f)) continue; // rounding may pick the other side
             if (inGap(p, o)) continue; // carved: see AGapPartsTheFlapFromMaterialItSweptInto
             const glm::vec4 back = shader::operatorBackward(shader::operatorForward(p, o), o);
@@ -265,7 +265,7 @@ TEST(Peeler, JacobianMatchesFiniteDifferences) {
         for (int i = 0; i < 10000; ++i) {
             // Half on the moved material, half anywhere in the deformed box.
             const glm::vec3 q =
-                i % 2 ? shader::operatorForward(samplePoint(rng, o, 1), o)
+                i % 2 ? shader::operatorForward(samplePeelerPoint(rng, o, 1), o)
                       : rng.inBox(glm::vec3(-1.5f, -1.0f, -1.0f), glm::vec3(1.5f, 1.0f, top));
             const int part = flapPart(q, o);
             const int piece = mapPiece(q, o);

@@ -33,7 +33,7 @@ std::vector<PliersCase> pliersCases() {
 }
 
 // Even i: anywhere in the box; odd i: in the ball's bounding box.
-glm::vec3 samplePoint(Rng& rng, const OperatorParams& o, int i) {
+glm::vec3 samplePliersPoint(Rng& rng, const OperatorParams& o, int i) {
     if (i % 2 == 0) return rng.inUnitBox();
     const glm::vec3 c(o.a);
     return rng.inBox(c - glm::vec3(o.a.w), c + glm::vec3(o.a.w));
@@ -61,7 +61,7 @@ TEST(Pliers, BackwardUndoesForward) {
         Rng rng(31);
         float worst = 0.0f;
         for (int i = 0; i < 10000; ++i) {
-            const glm::vec3 p = samplePoint(rng, c.o, i);
+            const glm::vec3 p = samplePliersPoint(rng, c.o, i);
             const glm::vec4 back = shader::operatorBackward(shader::operatorForward(p, c.o), c.o);
             worst = std::max(worst, maxAbs(glm::vec3(back) - p));
             EXPECT_EQ(back.w, CW_NO_CUT);
@@ -78,7 +78,7 @@ TEST(Pliers, SupportStaysInsideTheBallSoTheFacesStayFixed) {
         const float radius = c.o.a.w;
         Rng rng(32);
         for (int i = 0; i < 10000; ++i) {
-            const glm::vec3 p = samplePoint(rng, c.o, 1);
+            const glm::vec3 p = samplePliersPoint(rng, c.o, 1);
             if (glm::length(p - centre) >= radius) continue;
             EXPECT_LE(glm::length(shader::operatorForward(p, c.o) - centre),
                       radius * (1.0f + 1e-6f));
@@ -115,7 +115,7 @@ TEST(Pliers, JacobianMatchesFiniteDifferences) {
         // Beyond the validator's k < 0.95 float noise is amplified up to 1 / (1 - k).
         const float tolerance = shader::pliersContraction(c.o) > 0.95f ? 5e-3f : 2e-3f;
         for (int i = 0; i < 10000; ++i) {
-            const glm::vec3 q = shader::operatorForward(samplePoint(rng, c.o, i), c.o);
+            const glm::vec3 q = shader::operatorForward(samplePliersPoint(rng, c.o, i), c.o);
             const glm::mat3 analytic = shader::operatorJacobian(q, c.o);
             const float err = jacobianError(analytic, extrapolatedJacobian(q, c.o, h));
             worst = std::max(worst, err);

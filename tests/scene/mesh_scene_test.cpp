@@ -28,8 +28,6 @@ protected:
     TempDir m_dir;
 };
 
-} // namespace
-
 TEST_F(MeshScene, PlacementDefaultsToMetresInTheWorld) {
     const Scene s = parse(withMeshes(R"([{"file": "tool.glb"}])"));
     ASSERT_EQ(s.meshes.size(), 1u);
@@ -107,4 +105,5 @@ TEST_F(MeshScene, GlyphIsABooleanOrAnObject) {
     ASSERT_EQ(problems.size(), 2u) << error(doc);
 }
 
+} // namespace
 } // namespace cutaway::test

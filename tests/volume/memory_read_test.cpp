@@ -21,7 +21,7 @@ std::vector<std::byte> contentOf(const std::filesystem::path& file) {
     return bytes;
 }
 
-void expectSame(const Volume& a, const Volume& b) {
+void expectIdentical(const Volume& a, const Volume& b) {
     EXPECT_EQ(a.dims, b.dims);
     EXPECT_EQ(a.type, b.type);
     EXPECT_EQ(a.spacing, b.spacing);
@@ -46,7 +46,7 @@ void compareReaders(const std::vector<std::filesystem::path>& files, FromFile fr
         const std::string bytesError = inputError([&] { got = fromBytes(bytes, file.string()); });
         if (expected) {
             ASSERT_TRUE(got) << bytesError;
-            expectSame(*expected, *got);
+            expectIdentical(*expected, *got);
         } else {
             EXPECT_EQ(fileError, bytesError);
         }

@@ -29,8 +29,6 @@ void PrintTo(const Scan& scan, std::ostream* os) {
 
 class SharedScans : public ::testing::TestWithParam<Scan> {};
 
-} // namespace
-
 TEST_P(SharedScans, LoadWithTheirStatedShape) {
     const std::filesystem::path folder(CUTAWAY_SHARED_DATA);
     const Scan& scan = GetParam();
@@ -91,4 +89,5 @@ INSTANTIATE_TEST_SUITE_P(Data, SharedScans, ::testing::ValuesIn(kScans), [](cons
     return name;
 });
 
+} // namespace
 } // namespace cutaway::test
