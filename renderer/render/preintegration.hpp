@@ -16,7 +16,12 @@ constexpr int kPreintegrationSize = 256;
 /// `table` is the transfer function tabulated over the window (straight colour,
 /// alpha per `referenceMm` of material, as tabulateTransfer gives). Returns
 /// n * n premultiplied RGBA entries, front value along x (fastest), back along y.
+/// The rows are shared among `threads` threads (0: one per hardware thread);
+/// the table is the same for any count. Its cost grows as n^3 (about 5.6 M
+/// exponentials at 256): a scene that animates its transfer function pays it
+/// at every frame, once per label layer.
 std::vector<glm::vec4> preintegrate(const std::vector<glm::vec4>& table, double referenceMm,
-                                    double segmentMm, int n = kPreintegrationSize);
+                                    double segmentMm, int n = kPreintegrationSize,
+                                    unsigned threads = 0);
 
 } // namespace cutaway::render

@@ -10,7 +10,6 @@
 #include "shared/feature.h"
 
 #include <algorithm>
-#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 #include <limits>
 #include <random>
@@ -78,7 +77,6 @@ gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& objec
     return bake::uploadVolume(ctx, v, {0.0, 255.0});
 }
 
-/// R16F texels back as floats.
 /// The direction the operator shader takes from a baked field at a voxel
 /// (featureDirection in glsl/slice_operator.h): featureGradientOf over its
 /// neighbours, clamped to the grid.
