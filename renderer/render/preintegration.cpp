@@ -52,8 +52,8 @@ std::vector<glm::vec4> preintegrate(const std::vector<glm::vec4>& table, double 
     auto rows = [&](int first, int stride) {
         for (int b = first; b < n; b += stride)
             for (int f = 0; f < n; ++f) {
-                // The sub-steps read entries lo..hi + 1 (the last with weight 0
-                // when f == b).
+                // The sub-steps read entries min(f, b) to max(f, b), and the
+                // next one with weight 0 when f == b: lo to hi.
                 const int lo = std::min(f, b), hi = std::min(std::max(f, b) + 1, n - 1);
                 if (opaqueUpTo[std::size_t(hi) + 1] == opaqueUpTo[std::size_t(lo)]) continue;
                 // One sub-step per table entry crossed (at least 2) resolves every

@@ -127,6 +127,15 @@ NrrdSpace parseSpace(const detail::NrrdFields& f, const std::string& ctx) {
     return out;
 }
 
+// The one vector of a `space origin` field.
+std::vector<double> originVector(std::string_view text, const std::string& ctx) {
+    auto origins = parseNrrdVectors(text, "space origin", ctx);
+    if (origins.size() != 1 || !origins[0]) {
+        throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
+    }
+    return std::move(*origins[0]);
+}
+
 /// The first three components of a `space directions` or `space origin`
 /// vector, in LPS for an anatomical space. Its length must be the space's
 /// dimension (3 when the header states none).
@@ -199,11 +208,7 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
         }
         volume.space = space.space;
         if (f.origin) {
-            const auto origins = parseNrrdVectors(*f.origin, "space origin", ctx);
-            if (origins.size() != 1 || !origins[0]) {
-                throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
-            }
-            volume.origin = spatialPart(*origins[0], space, "space origin", ctx);
+            volume.origin = spatialPart(originVector(*f.origin, ctx), space, "space origin", ctx);
             if (!std::isfinite(volume.origin.x) || !std::isfinite(volume.origin.y) ||
                 !std::isfinite(volume.origin.z)) {
                 throw InputError(ctx + ": 'space origin' is not finite");
@@ -228,12 +233,9 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
         // Without space directions the axes have no orientation in a space:
         // an origin is kept as written, for reference.
         if (f.origin) {
-            const auto origins = parseNrrdVectors(*f.origin, "space origin", ctx);
-            if (origins.size() != 1 || !origins[0]) {
-                throw InputError(ctx + ": 'space origin' must be one vector like (0,0,0)");
-            }
-            for (std::size_t a = 0; a < std::min<std::size_t>(3, origins[0]->size()); ++a) {
-                volume.origin[static_cast<int>(a)] = (*origins[0])[a];
+            const std::vector<double> origin = originVector(*f.origin, ctx);
+            for (std::size_t a = 0; a < std::min<std::size_t>(3, origin.size()); ++a) {
+                volume.origin[static_cast<int>(a)] = origin[a];
             }
         }
     }
