@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <future>
+#include <string>
 #include <utility>
 
 namespace cutaway::bench {
@@ -32,6 +34,43 @@ double singleFrameFps(const gpu::Context& ctx, Scene scene, int views, Image* la
         }
     });
     return 1000.0 * views / ms;
+}
+
+// What a frame's files cost the next frame's render, without the drift of
+// the machine's speed (which moves the turntable's rate against single frames
+// rendered a minute apart by 5-10 %): each of the turntable's `views` views is
+// rendered twice in a row, alone and while the previous image's files are
+// written as a sequence writes them (job::writeFrameFiles), the order turning
+// with the view. A render with files counts until its files are written.
+nlohmann::json interleavedWrites(const gpu::Context& ctx, Scene scene, int views,
+                                 const std::filesystem::path& dir) {
+    job::FrameRenderer renderer(ctx);
+    const double azimuth = scene.camera.azimuthDeg;
+    Image previous = renderer.render(scene);
+    double alone = 0.0, withFiles = 0.0;
+    ExrOptions exr;
+    exr.attributes = {{"cutaway/frame", "0"}};
+    for (int i = 1; i <= views; ++i) {
+        scene.camera.azimuthDeg = azimuth + 360.0 * i / views;
+        for (int k = 0; k < 2; ++k) {
+            const bool write = (i + k) % 2 == 1;
+            Image image;
+            Image written = write ? previous : Image(); // moved in, as a sequence does
+            const double ms = millisecondsOf([&] {
+                if (!write) {
+                    image = renderer.render(scene);
+                    return;
+                }
+                std::future<double> files = job::writeFrameFiles(
+                    dir / "interleaved.exr", dir / "interleaved.png", std::move(written), exr);
+                image = renderer.render(scene);
+                files.get();
+            });
+            (write ? withFiles : alone) += ms;
+            previous = std::move(image);
+        }
+    }
+    return {{"views", views}, {"ms_alone", alone}, {"ms_with_files", withFiles}};
 }
 
 // What writing `image` costs, as a frame of a sequence is written (half
@@ -101,6 +140,7 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
         Image last;
         const double singleAfter = singleFrameFps(ctx, scene, frames, &last);
         const nlohmann::json writes = writeCosts(last, dir);
+        const nlohmann::json interleaved = interleavedWrites(ctx, scene, frames, dir);
         std::filesystem::remove_all(dir);
         std::vector<double> ms;
         for (const double s : summary.frameSeconds)
@@ -130,7 +170,8 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
                 {"single_fps_after", singleAfter},
                 {"single_views", frames}, // the turntable's views, count over total time
                 {"writes", "EXR (half) + PNG per frame"},
-                {"write_costs", writes}};
+                {"write_costs", writes},
+                {"interleaved", interleaved}};
     }
     return {{"skipped", "no dataset with a surface row is present"}};
 }
@@ -156,6 +197,14 @@ void printTurntable(const nlohmann::json& records) {
             t["total_s"].get<double>(), t["sustained_fps"].get<double>(),
             t["first_frame_s"].get<double>(), t["steady_fps"].get<double>(), single,
             t.value("single_fps_before", 0.0), t.value("single_fps_after", 0.0));
+        if (t.contains("interleaved")) {
+            const nlohmann::json& w = t["interleaved"];
+            const double alone = w["ms_alone"].get<double>();
+            std::printf("its %d views each rendered alone and again while the previous frame's "
+                        "files are written, in turns: %.0f against %.0f ms (%.3f)\n",
+                        w["views"].get<int>(), alone, w["ms_with_files"].get<double>(),
+                        alone / w["ms_with_files"].get<double>());
+        }
         if (!t.contains("write_costs")) continue;
         std::printf("\nwriting one %dx%d frame (half floats; each the median of 5 writes):\n\n"
                     "| file | ms | KiB |\n|---|---|---|\n",

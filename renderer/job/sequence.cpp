@@ -153,12 +153,23 @@ ExrCompression exrCompression(Compression compression) {
 }
 
 PendingWrite startWrite(FrameEvent event, double renderSeconds, Image image, ExrOptions exr) {
-    auto write = [exrPath = event.exr, png = event.png, image = std::move(image),
-                  exr = std::move(exr)]() mutable {
+    std::future<double> write =
+        writeFrameFiles(event.exr, event.png, std::move(image), std::move(exr));
+    return {std::move(event), renderSeconds, std::move(write)};
+}
+
+} // namespace
+
+std::future<double> writeFrameFiles(std::filesystem::path exr,
+                                    std::optional<std::filesystem::path> png, Image image,
+                                    ExrOptions options) {
+    auto write = [exrPath = std::move(exr), png = std::move(png), image = std::move(image),
+                  options = std::move(options)]() mutable {
         const auto start = Clock::now();
-        if (!image.operatorIds.empty()) exr.channels.push_back({"operator_id", &image.operatorIds});
+        if (!image.operatorIds.empty())
+            options.channels.push_back({"operator_id", &image.operatorIds});
         createOutputFolder(exrPath);
-        writeExr(exrPath, image, exr);
+        writeExr(exrPath, image, options);
         if (png) {
             try {
                 writePng(*png, image);
@@ -170,10 +181,8 @@ PendingWrite startWrite(FrameEvent event, double renderSeconds, Image image, Exr
         }
         return secondsSince(start);
     };
-    return {std::move(event), renderSeconds, std::async(std::launch::async, std::move(write))};
+    return std::async(std::launch::async, std::move(write));
 }
-
-} // namespace
 
 SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                                const SequenceOptions& options) {

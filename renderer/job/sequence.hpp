@@ -8,11 +8,14 @@
 // sequence unless a track animates the volume itself); the pipelines live for
 // the whole run.
 #include "gpu/context.hpp"
+#include "io/exr.hpp"
+#include "io/image.hpp"
 #include "job/render_job.hpp"
 #include "scene/scene.hpp"
 
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +30,16 @@ struct FrameRange {
 /// Creates the folders a file's path names, if missing; throws RuntimeError
 /// naming the folder when it cannot.
 void createOutputFolder(const std::filesystem::path& file);
+
+/// Writes a frame's files on a thread of their own, as a sequence does while
+/// it renders the next frame: `exr` (its folder made if missing; the image's
+/// operator ids, when present, as the channel "operator_id") and then, when
+/// given, the preview `png`, which removes the EXR if it fails (a frame's
+/// files are written both or neither). The future gives the write's seconds
+/// or throws what it threw.
+std::future<double> writeFrameFiles(std::filesystem::path exr,
+                                    std::optional<std::filesystem::path> png, Image image,
+                                    ExrOptions options);
 
 /// Parses "A..B" or "N" (frame numbers >= 0); throws InputError naming --frames.
 FrameRange parseFrameRange(const std::string& text);

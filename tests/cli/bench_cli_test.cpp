@@ -117,6 +117,11 @@ TEST_F(BenchCli, ATinyTableGivesARecordForEveryRowAndTheVtkSpec) {
                 }
             }
             EXPECT_EQ(writes[0]["file"], "frame_none.exr");
+            // The views in turns, alone and with the previous frame's files.
+            const json& turns = rec["interleaved"];
+            EXPECT_EQ(turns["views"], 2);
+            EXPECT_GT(turns["ms_alone"].get<double>(), 0.0);
+            EXPECT_GT(turns["ms_with_files"].get<double>(), 0.0);
             continue;
         }
         ++frames;
