@@ -152,12 +152,6 @@ ExrCompression exrCompression(Compression compression) {
     return ExrCompression::Zip;
 }
 
-PendingWrite startWrite(FrameEvent event, double renderSeconds, Image image, ExrOptions exr) {
-    std::future<double> write =
-        writeFrameFiles(event.exr, event.png, std::move(image), std::move(exr));
-    return {std::move(event), renderSeconds, std::move(write)};
-}
-
 } // namespace
 
 std::future<double> writeFrameFiles(std::filesystem::path exr,
@@ -273,7 +267,9 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                               {"cutaway/scene", recordedScene(frameScene).dump()}};
             for (std::size_t n = 0; n < event.notes.size(); ++n)
                 exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
-            pending = startWrite(std::move(event), renderSeconds, std::move(image), std::move(exr));
+            std::future<double> write =
+                writeFrameFiles(event.exr, event.png, std::move(image), std::move(exr));
+            pending = PendingWrite{std::move(event), renderSeconds, std::move(write)};
         } catch (const Error& e) {
             finishPending();
             event.kind = FrameEvent::Kind::Failed;
