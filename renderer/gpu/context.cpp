@@ -160,15 +160,14 @@ void Context::release() noexcept {
     m_instance = VK_NULL_HANDLE;
 }
 
-uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const {
-    for (uint32_t i = 0; i < m_memory.memoryTypeCount; ++i)
-        if ((typeBits & (1u << i)) && (m_memory.memoryTypes[i].propertyFlags & flags) == flags)
-            return i;
+uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                             VkMemoryPropertyFlags preferred) const {
+    if (const auto type = chooseMemoryType(m_memory, typeBits, required, preferred)) return *type;
     throw RuntimeError("no Vulkan memory type with the needed properties on " + deviceName());
 }
 
-DeviceMemory Context::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
-                               const std::string& what) const {
+DeviceMemory Context::allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags required,
+                               const std::string& what, VkMemoryPropertyFlags preferred) const {
     const auto refuse = [&](const std::string& why) {
         return ResourceError("cannot allocate " + formatBytes(req.size) + " of device memory for " +
                              what + " on " + deviceName() + ": " + why);
@@ -177,7 +176,7 @@ DeviceMemory Context::allocate(const VkMemoryRequirements& req, VkMemoryProperty
     if (!problem.empty()) throw refuse(problem);
     VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     info.allocationSize = req.size;
-    info.memoryTypeIndex = memoryType(req.memoryTypeBits, flags);
+    info.memoryTypeIndex = memoryType(req.memoryTypeBits, required, preferred);
     VkDeviceMemory memory = VK_NULL_HANDLE;
     const VkResult result = vkAllocateMemory(m_device, &info, nullptr, &memory);
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)

@@ -59,8 +59,10 @@ public:
     bool computeBallots() const { return m_computeBallots; }
     bool validationEnabled() const { return m_validation; }
 
-    /// Index of a memory type allowed by `typeBits` that has `flags`; throws if none.
-    uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags flags) const;
+    /// Index of a memory type allowed by `typeBits` that has `required`, one
+    /// that also has `preferred` if there is one (chooseMemoryType); throws if none.
+    uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                        VkMemoryPropertyFlags preferred = 0) const;
 
     const MemoryLimits& memoryLimits() const { return m_memoryLimits; }
     /// Bytes of device memory held now by what allocate() returned.
@@ -68,11 +70,12 @@ public:
     /// The most held at once since the context was made or the last reset.
     VkDeviceSize memoryPeak() const { return m_memoryPeak.load(); }
     void resetMemoryPeak() const { m_memoryPeak.store(memoryInUse()); }
-    /// Memory for `req` with `flags`. Throws RuntimeError naming `what` (e.g.
-    /// "a 3D image of 256x256x256 R16_UNORM") and the limit when it exceeds
-    /// one (gpu/memory.hpp) or the device is out of memory.
-    DeviceMemory allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags,
-                          const std::string& what) const;
+    /// Memory for `req` with `required` (and `preferred` where a type has
+    /// both). Throws RuntimeError naming `what` (e.g. "a 3D image of
+    /// 256x256x256 R16_UNORM") and the limit when it exceeds one
+    /// (gpu/memory.hpp) or the device is out of memory.
+    DeviceMemory allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags required,
+                          const std::string& what, VkMemoryPropertyFlags preferred = 0) const;
 
     /// Records commands into a fresh primary command buffer, submits it and
     /// waits for it to finish.

@@ -27,6 +27,20 @@ MemoryLimits queryMemoryLimits(VkPhysicalDevice device, VkDeviceSize budgetOptio
     return limits;
 }
 
+std::optional<uint32_t> chooseMemoryType(const VkPhysicalDeviceMemoryProperties& memory,
+                                         uint32_t typeBits, VkMemoryPropertyFlags required,
+                                         VkMemoryPropertyFlags preferred) {
+    const auto first = [&](VkMemoryPropertyFlags flags) -> std::optional<uint32_t> {
+        for (uint32_t i = 0; i < memory.memoryTypeCount; ++i)
+            if ((typeBits & (1u << i)) && (memory.memoryTypes[i].propertyFlags & flags) == flags)
+                return i;
+        return std::nullopt;
+    };
+    if (preferred != 0)
+        if (const auto both = first(required | preferred)) return both;
+    return first(required);
+}
+
 std::string allocationProblem(VkDeviceSize size, VkDeviceSize inUse, const MemoryLimits& limits) {
     if (limits.maxAllocation != 0 && size > limits.maxAllocation)
         return "it is larger than the device's maxMemoryAllocationSize of " +

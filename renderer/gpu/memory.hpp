@@ -12,6 +12,8 @@
 // Nothing is downsampled or bricked behind the user's back: a volume that
 // does not fit is an error that says what it needed and what the limit is.
 #include <atomic>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vulkan/vulkan.h>
@@ -31,6 +33,15 @@ MemoryLimits queryMemoryLimits(VkPhysicalDevice device, VkDeviceSize budgetOptio
 /// Why `size` more bytes cannot be allocated while `inUse` are held, naming
 /// the limit; empty when they can.
 std::string allocationProblem(VkDeviceSize size, VkDeviceSize inUse, const MemoryLimits& limits);
+
+/// The memory type for an allocation: the first type allowed by `typeBits`
+/// with all of `required` and all of `preferred`, else the first with
+/// `required`; none if no type has it. Buffers the host reads back prefer
+/// HOST_CACHED: discrete GPUs list a write-combined host type first, and the
+/// host reads such memory uncached, a few GB/s at best.
+std::optional<uint32_t> chooseMemoryType(const VkPhysicalDeviceMemoryProperties& memory,
+                                         uint32_t typeBits, VkMemoryPropertyFlags required,
+                                         VkMemoryPropertyFlags preferred = 0);
 
 /// "512M", "2G", "1.5GiB", "64 MiB", "1000000" (bytes); K, M, G, T are binary
 /// (1024-based) with or without "iB". Throws InputError saying what it expected.

@@ -10,7 +10,7 @@
 namespace cutaway::gpu {
 
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
-                    bool hostVisible) {
+                    HostAccess access) {
     Buffer b;
     b.size = size;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -23,13 +23,12 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx.device(), buffer, &req);
-    b.memory = ctx.allocate(req,
-                            hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                              VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                        : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT,
-                            "a buffer of " + formatBytes(size));
+    b.memory = ctx.allocate(
+        req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+        "a buffer of " + formatBytes(size),
+        access == HostAccess::Read ? VK_MEMORY_PROPERTY_HOST_CACHED_BIT : 0);
     VK_CHECK(vkBindBufferMemory(ctx.device(), buffer, b.memory.get(), 0));
-    if (hostVisible) VK_CHECK(vkMapMemory(ctx.device(), b.memory.get(), 0, size, 0, &b.mapped));
+    VK_CHECK(vkMapMemory(ctx.device(), b.memory.get(), 0, size, 0, &b.mapped));
     return b;
 }
 
@@ -175,7 +174,7 @@ void uploadImage(const Context& ctx, const Image& image, std::size_t texelBytes,
     const uint32_t perChunk = static_cast<uint32_t>(
         std::clamp<std::size_t>(kStagingBytes / (sliceTexels * texelBytes), 1, slices));
     Buffer staging = createBuffer(ctx, perChunk * sliceTexels * texelBytes,
-                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT, HostAccess::Write);
     for (uint32_t first = 0; first < slices; first += perChunk) {
         const uint32_t count = std::min(perChunk, slices - first);
         write(first * sliceTexels, count * sliceTexels, static_cast<std::byte*>(staging.mapped));
@@ -256,7 +255,7 @@ std::vector<std::byte> downloadImage(const Context& ctx, const Image& image, VkI
                                      std::size_t bytesPerTexel) {
     const std::size_t bytes = bytesPerTexel * image.extent.width * image.extent.height *
                               image.extent.depth * image.layers;
-    Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    Buffer staging = createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, HostAccess::Read);
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         transition(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,

@@ -16,12 +16,21 @@ struct Buffer {
     BufferHandle buffer;
     DeviceMemory memory;
     VkDeviceSize size = 0;
-    void* mapped = nullptr; ///< persistent mapping for host-visible buffers, else null
+    void* mapped = nullptr; ///< the persistent mapping
 };
 
-/// hostVisible: HOST_VISIBLE | HOST_COHERENT and mapped; otherwise DEVICE_LOCAL.
+/// Which way a buffer's data goes between the host and the device.
+enum class HostAccess {
+    Write, ///< the host writes, the device reads: uploads, uniforms, vertices
+    Read,  ///< the device writes, the host reads: readbacks, on a HOST_CACHED type if any
+};
+
+/// A HOST_VISIBLE | HOST_COHERENT buffer, mapped for good. A readback's type
+/// is also HOST_CACHED where the device has one (chooseMemoryType): on a
+/// discrete GPU the first host-visible type is write-combined, fine for
+/// writing and slow to read. lavapipe has one type with every flag.
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage,
-                    bool hostVisible);
+                    HostAccess access);
 
 struct Image {
     ImageHandle image;

@@ -82,8 +82,9 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
         const bool rebake = !op || !sameMap(op->spec, spec);
         if (!op) {
             op = std::make_unique<GpuOperator>();
-            op->uniforms = gpu::createBuffer(m_ctx, sizeof(shader::OperatorUniforms),
-                                             VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+            op->uniforms =
+                gpu::createBuffer(m_ctx, sizeof(shader::OperatorUniforms),
+                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::HostAccess::Write);
             op->set = gpu::allocateDescriptorSet(m_ctx, m_setLayout,
                                                  {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},

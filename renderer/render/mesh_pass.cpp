@@ -52,11 +52,13 @@ void MeshPass::upload(GpuMesh& gpuMesh, const mesh::TriangleMesh& mesh, bool reu
     const std::size_t indexBytes = mesh.indices.size() * sizeof(uint32_t);
     // Host-visible: tool meshes are small, and glyphs change every frame.
     if (!reuse || gpuMesh.vertices.size < vertexBytes)
-        gpuMesh.vertices = gpu::createBuffer(m_ctx, std::max<std::size_t>(vertexBytes, 64),
-                                             VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
+        gpuMesh.vertices =
+            gpu::createBuffer(m_ctx, std::max<std::size_t>(vertexBytes, 64),
+                              VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, gpu::HostAccess::Write);
     if (!reuse || gpuMesh.indices.size < indexBytes)
-        gpuMesh.indices = gpu::createBuffer(m_ctx, std::max<std::size_t>(indexBytes, 64),
-                                            VK_BUFFER_USAGE_INDEX_BUFFER_BIT, true);
+        gpuMesh.indices =
+            gpu::createBuffer(m_ctx, std::max<std::size_t>(indexBytes, 64),
+                              VK_BUFFER_USAGE_INDEX_BUFFER_BIT, gpu::HostAccess::Write);
     if (vertexBytes) std::memcpy(gpuMesh.vertices.mapped, vertices.data(), vertexBytes);
     if (indexBytes) std::memcpy(gpuMesh.indices.mapped, mesh.indices.data(), indexBytes);
     gpuMesh.indexCount = static_cast<uint32_t>(mesh.indices.size());

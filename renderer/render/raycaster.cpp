@@ -102,7 +102,7 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
     m_operatorLayout = gpu::createPipelineLayout(ctx, sets, sizeof(RayPush), cs);
     m_operatorUniforms =
         gpu::createBuffer(ctx, sizeof(shader::OperatorUniforms) * CW_RAY_MAX_OPERATORS,
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::HostAccess::Write);
 }
 
 gpu::DescriptorSet Raycaster::bind(const Inputs& in, const Targets& targets,
@@ -205,8 +205,8 @@ void Raycaster::prepareCells(const GpuVolume& volume, const SpanGrid* spans,
     const int words[9] = {runs.lo.x, runs.lo.y, runs.lo.z, runs.lo.w, runs.hi.x,
                           runs.hi.y, runs.hi.z, runs.hi.w, runs.bins};
     if (!m_visible.buffer)
-        m_visible =
-            gpu::createBuffer(m_ctx, sizeof words, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        m_visible = gpu::createBuffer(m_ctx, sizeof words, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      gpu::HostAccess::Write);
     std::memcpy(m_visible.mapped, words, sizeof words);
     m_cells.distance = {}; // freed before its successor is made
     // Without the scan on the host: one occupied cell, the whole box.

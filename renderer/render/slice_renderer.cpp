@@ -125,7 +125,7 @@ SliceRenderer::SliceRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_valueBindi
     m_raycaster = std::make_unique<Raycaster>(ctx, m_sampler.get(), m_nearest.get(),
                                               m_operatorSetLayout.get());
     m_uniforms = gpu::createBuffer(ctx, sizeof(shader::FrameUniforms),
-                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::HostAccess::Write);
 }
 
 void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOperatorId,
@@ -151,28 +151,28 @@ void SliceRenderer::ensureTargets(uint32_t width, uint32_t height, bool withOper
                              {width, height, 1}, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
                              VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT);
         m_readback = gpu::createBuffer(m_ctx, texel * width * height,
-                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::HostAccess::Read);
     }
     if (withMeshes && !m_meshColor.image) {
         m_meshColor =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {width, height, 1},
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         m_meshReadback = gpu::createBuffer(m_ctx, texel * width * height,
-                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+                                           VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::HostAccess::Read);
     }
     if (slicing && withOperatorId && !m_operatorId.image) {
         m_operatorId =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, kOperatorIdFormat, {width, height, 1},
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        m_operatorIdReadback =
-            gpu::createBuffer(m_ctx, 8ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        m_operatorIdReadback = gpu::createBuffer(
+            m_ctx, 8ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::HostAccess::Read);
     }
 }
 
 void SliceRenderer::ensureVertexCapacity(std::size_t bytes) {
     if (m_vertices.buffer && m_vertices.size >= bytes) return;
     m_vertices = gpu::createBuffer(m_ctx, std::max<std::size_t>(bytes * 3 / 2, 4096),
-                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, true);
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, gpu::HostAccess::Write);
 }
 
 const BrickOccupancy& SliceRenderer::occupancyFor(const Scene& scene, const GpuVolume& volume,

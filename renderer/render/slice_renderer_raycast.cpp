@@ -58,12 +58,12 @@ Image SliceRenderer::renderRaycast(const CameraMatrices& cam, const GpuVolume& v
             m_ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R32G32B32A32_SFLOAT, {width, height, 1},
             VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
         m_rayReadback = gpu::createBuffer(m_ctx, 16ull * width * height,
-                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+                                          VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::HostAccess::Read);
         m_rayId =
             gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R32_SFLOAT, {width, height, 1},
                              VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        m_rayIdReadback =
-            gpu::createBuffer(m_ctx, 4ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+        m_rayIdReadback = gpu::createBuffer(
+            m_ctx, 4ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::HostAccess::Read);
     }
     m_raycaster->prepareCells(volume, m_cellSpans ? &*m_cellSpans : nullptr, *m_visible,
                               m_occupancySerial, marginVoxels);

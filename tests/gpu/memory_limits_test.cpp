@@ -7,6 +7,8 @@
 #include "gpu_fixture.hpp"
 
 #include <gtest/gtest.h>
+#include <initializer_list>
+#include <optional>
 
 namespace cutaway::test {
 namespace {
@@ -75,13 +77,71 @@ TEST(MemoryLimitsCheck, EachLimitIsNamed) {
     EXPECT_EQ(gpu::allocationProblem(50 * kMiB, 50 * kMiB, limits), "");
 }
 
+namespace {
+
+constexpr VkMemoryPropertyFlags kLocal = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
+constexpr VkMemoryPropertyFlags kHost =
+    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+constexpr VkMemoryPropertyFlags kCached = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+
+VkPhysicalDeviceMemoryProperties memoryTypes(std::initializer_list<VkMemoryPropertyFlags> types) {
+    VkPhysicalDeviceMemoryProperties memory{};
+    for (const VkMemoryPropertyFlags flags : types)
+        memory.memoryTypes[memory.memoryTypeCount++].propertyFlags = flags;
+    return memory;
+}
+
+// How cutaway picks a type for a buffer the host writes and one it reads back.
+struct BufferTypes {
+    std::optional<uint32_t> write, read;
+};
+
+BufferTypes bufferTypes(const VkPhysicalDeviceMemoryProperties& memory, uint32_t typeBits) {
+    return {gpu::chooseMemoryType(memory, typeBits, kHost),
+            gpu::chooseMemoryType(memory, typeBits, kHost, kCached)};
+}
+
+} // namespace
+
+// Readbacks go to host-cached memory where a type has it; a discrete GPU lists
+// its write-combined host type first, which the host reads uncached.
+TEST(MemoryType, ReadbacksPreferHostCachedAndUploadsKeepTheFirstHostType) {
+    // A discrete NVIDIA GPU's types (vulkaninfo): none, device-local,
+    // host-visible write-combined, host-visible cached, device-local mapped.
+    const auto nvidia = memoryTypes({0, kLocal, kHost, kHost | kCached, kLocal | kHost});
+    BufferTypes t = bufferTypes(nvidia, 0x1f);
+    EXPECT_EQ(t.write, 2u);
+    EXPECT_EQ(t.read, 3u);
+    // A buffer that cannot live in the cached type falls back to the first host type.
+    t = bufferTypes(nvidia, 0x17);
+    EXPECT_EQ(t.read, 2u);
+    // An AMD GPU's: the mapped device-local type before the cached one.
+    const auto amd = memoryTypes({kLocal, kHost, kLocal | kHost, kHost | kCached});
+    t = bufferTypes(amd, 0xf);
+    EXPECT_EQ(t.write, 1u);
+    EXPECT_EQ(t.read, 3u);
+    // lavapipe: one type with every flag.
+    const auto lavapipe = memoryTypes({kLocal | kHost | kCached});
+    t = bufferTypes(lavapipe, 0x1);
+    EXPECT_EQ(t.write, 0u);
+    EXPECT_EQ(t.read, 0u);
+    // No host-visible type the buffer may use: none, for either.
+    t = bufferTypes(nvidia, 0x3);
+    EXPECT_FALSE(t.write);
+    EXPECT_FALSE(t.read);
+    // A cached type that is not coherent is never taken (nothing invalidates it).
+    const auto incoherent = memoryTypes({kLocal, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | kCached});
+    EXPECT_FALSE(bufferTypes(incoherent, 0x3).read);
+}
+
 TEST_F(GpuTest, MemoryInUseCountsEveryAllocationAndReturnsToZero) {
     EXPECT_EQ(ctx().memoryInUse(), 0u);
     {
         gpu::Image a = volumeImage(ctx(), 32);
         const VkDeviceSize one = ctx().memoryInUse();
         EXPECT_GE(one, 32u * 32u * 32u * 2u);
-        gpu::Buffer b = gpu::createBuffer(ctx(), kMiB, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+        gpu::Buffer b = gpu::createBuffer(ctx(), kMiB, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                          gpu::HostAccess::Write);
         EXPECT_GE(ctx().memoryInUse(), one + kMiB);
         gpu::Image moved = std::move(a); // moving does not count twice
         EXPECT_GE(ctx().memoryInUse(), one + kMiB);
