@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/halves.hpp"
 
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
@@ -21,6 +22,7 @@
 #include <exception>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <new>
 #include <numeric>
 
@@ -31,18 +33,6 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kChannelNames[4] = {"R", "G", "B", "A"};
-constexpr float kHalfMax = 65504.0f; // largest finite half
-
-// Clamps to the finite half range before converting: Imath would turn values
-// beyond +-65504 into infinities, and NaN would stay NaN; both poison
-// compositing downstream, so out-of-range values saturate and NaN becomes 0.
-half toHalf(float value) {
-    if (std::isnan(value)) return half(0.0f);
-    if (value > kHalfMax) return half(kHalfMax);
-    if (value < -kHalfMax) return half(-kHalfMax);
-    return half(value);
-}
-
 void checkImage(const fs::path& path, const Image& image) {
     if (image.width <= 0 || image.height <= 0 ||
         image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
@@ -149,10 +139,10 @@ void writeExr(const fs::path& path, const Image& image, const ExrOptions& option
         try {
             const Imf::Header header = makeHeader(image, options);
             if (options.halfFloat) {
-                std::vector<half> halves(image.rgba.size());
-                for (std::size_t i = 0; i < halves.size(); ++i)
-                    halves[i] = toHalf(image.rgba[i]);
-                writePixels(tmp, header, halves.data(), image.width, image.height, Imf::HALF,
+                // Left uninitialized: every value is written below.
+                const auto halves = std::make_unique_for_overwrite<half[]>(image.rgba.size());
+                toHalves(image.rgba.data(), halves.get(), image.rgba.size());
+                writePixels(tmp, header, halves.get(), image.width, image.height, Imf::HALF,
                             options.channels);
             } else {
                 writePixels(tmp, header, image.rgba.data(), image.width, image.height, Imf::FLOAT,
