@@ -2,7 +2,7 @@
 //
 //   cutaway render SCENE [-o PATTERN] [--frames A..B] [--shard I/N] [--size WxH]
 //                  [--set /json/pointer=VALUE ...] [--png] [--skip-existing] [--fail-fast]
-//                  [--device NAME] [--memory-budget SIZE] [--quiet]
+//                  [--writers N] [--device NAME] [--memory-budget SIZE] [--quiet]
 //   cutaway validate SCENE [--set ...]
 //   cutaway export SCENE [--frame N] -o OUT.nrrd [--labels-output L.nrrd] [--set ...] [--raw]
 //   cutaway info FILE
@@ -63,6 +63,7 @@ struct RenderArgs {
     bool skipExisting = false;
     bool failFast = false;
     bool quiet = false;
+    int writers = 0; ///< 0: the sequence's default (job::writesInFlight)
 };
 
 std::vector<cutaway::SceneSetting> parseSettings(const std::vector<std::string>& sets) {
@@ -107,6 +108,7 @@ cutaway::job::SequenceOptions runOptions(const RenderArgs& args, const cutaway::
     if (!args.shard.empty()) options.shard = job::parseShard(args.shard);
     options.skipExisting = args.skipExisting;
     options.failFast = args.failFast;
+    options.writers = args.writers;
     return options;
 }
 
@@ -302,6 +304,11 @@ int main(int argc, char** argv) {
                      "Leave frames whose output files exist (resume an interrupted run)");
     render->add_flag("--fail-fast", renderArgs.failFast,
                      "Stop at the first failed frame (default: render the others, exit non-zero)");
+    render
+        ->add_option("--writers", renderArgs.writers,
+                     "Frames whose files are written at once while later frames render "
+                     "(default: one per core, up to 8, within 512 MiB of images)")
+        ->check(CLI::Range(1, cutaway::job::kMostWritersAllowed));
     render->add_option("--device", renderArgs.device,
                        "Vulkan device: a substring of its name (see `cutaway devices`)");
     render->add_option("--memory-budget", renderArgs.memoryBudget,

@@ -52,14 +52,15 @@ void removeQuietly(const fs::path& path) {
 // The temporaries being written, for removeTemporariesNow(), which may run in
 // a signal handler: fixed storage, no locks. A slot is claimed (kFree ->
 // kFilling), its path copied, then published (kReady); the handler reads only
-// published slots. More concurrent writes than slots go unregistered (the
-// sequence writer has at most two in flight).
+// published slots. More concurrent writes than slots go unregistered (a
+// sequence writes at most job::kMostWritersAllowed frames at once, each
+// file after the other).
 enum SlotState : int { kFree, kFilling, kReady };
 struct Slot {
     std::atomic<int> state{kFree};
     char path[PATH_MAX];
 };
-std::array<Slot, 8> g_slots;
+std::array<Slot, kTrackedTemporaries> g_slots;
 static_assert(std::atomic<int>::is_always_lock_free, "the signal handler needs lock-free atomics");
 
 class Registered {

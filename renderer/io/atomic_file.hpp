@@ -25,6 +25,10 @@ inline constexpr std::size_t kLongestFileName = 255 - (1 + 5 + 7 + 1 + 20);
 void writeAtomically(const std::filesystem::path& target,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 
+/// writeAtomically() calls whose temporaries removeTemporariesNow() knows of
+/// at once; more concurrent writes than this go unregistered.
+inline constexpr int kTrackedTemporaries = 32;
+
 /// Unlinks the temporaries of every writeAtomically() call in flight.
 /// Async-signal-safe (only atomics and unlink): a signal handler that is about
 /// to end the process calls it so that no temporary outlives the process.

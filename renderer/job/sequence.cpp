@@ -6,11 +6,14 @@
 #include "io/png.hpp"
 #include "scene/animation.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <deque>
 #include <future>
 #include <memory>
 #include <optional>
 #include <regex>
+#include <thread>
 
 namespace cutaway::job {
 namespace {
@@ -115,7 +118,8 @@ namespace {
 
 // A rendered frame on its way to disk. Writing frame n overlaps rendering
 // frame n + 1 (docs/performance.md): the files are written on another thread
-// while the device renders the next frame.
+// while the device renders the next frame, and where writes are slower than
+// renders, several frames' files at once (writesInFlight).
 // A frame's time is its own: its render (which ended before the write
 // began) plus its write, not the next frame's render that the write overlaps.
 struct PendingWrite {
@@ -178,6 +182,12 @@ std::future<double> writeFrameFiles(std::filesystem::path exr,
     return std::async(std::launch::async, std::move(write));
 }
 
+int writesInFlight(unsigned cores, std::size_t frameBytes) {
+    const std::size_t byMemory = kWriteQueueBytes / std::max<std::size_t>(frameBytes, 1);
+    const std::size_t byCores = std::clamp<std::size_t>(cores, 1, kMostWriters);
+    return static_cast<int>(std::clamp<std::size_t>(byMemory, 1, byCores));
+}
+
 SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                                const SequenceOptions& options) {
     const auto runStart = Clock::now();
@@ -195,13 +205,12 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
         }
         if (options.onFrame) options.onFrame(event);
     };
-    std::optional<PendingWrite> pending; // the previous frame, being written
-    // Waits for the previous frame's files and reports it; frames are
+    std::deque<PendingWrite> pending; // earlier frames being written, oldest first
+    // Waits for the oldest pending frame's files and reports it; frames are
     // reported in order.
-    const auto finishPending = [&] {
-        if (!pending) return;
-        PendingWrite p = std::move(*pending);
-        pending.reset();
+    const auto finishOldest = [&] {
+        PendingWrite p = std::move(pending.front());
+        pending.pop_front();
         try {
             p.event.seconds = p.renderSeconds + p.writeSeconds.get();
             p.event.kind = FrameEvent::Kind::Rendered;
@@ -219,6 +228,18 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             halted = true;
         }
         report(p.event);
+    };
+    const auto finishAll = [&] {
+        while (!pending.empty())
+            finishOldest();
+    };
+    // Reports the frames whose files are written, and waits for the oldest
+    // while `most` or more are pending.
+    const auto finishWritten = [&](std::size_t most) {
+        while (!pending.empty() && (pending.size() >= most ||
+                                    pending.front().writeSeconds.wait_for(
+                                        std::chrono::seconds(0)) == std::future_status::ready))
+            finishOldest();
     };
 
     for (std::size_t i = 0; i < frames.size() && !halted; ++i) {
@@ -238,7 +259,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             if (frameScene.output.png) event.png = previewPath(event.exr);
             if (options.skipExisting && std::filesystem::exists(event.exr) &&
                 (!event.png || std::filesystem::exists(*event.png))) {
-                finishPending();
+                finishAll();
                 event.kind = FrameEvent::Kind::Skipped;
                 ++summary.skipped;
                 report(event);
@@ -251,12 +272,17 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             for (const std::string& warning : renderer->takeWarnings())
                 event.warnings.push_back(scene.file.empty() ? warning
                                                             : scene.file.string() + ": " + warning);
-            finishPending();
+            const std::size_t writers =
+                options.writers > 0
+                    ? static_cast<std::size_t>(std::min(options.writers, kMostWritersAllowed))
+                    : static_cast<std::size_t>(writesInFlight(std::thread::hardware_concurrency(),
+                                                              image.rgba.size() * sizeof(float)));
+            finishWritten(writers);
             if (stop()) { // the frame in flight is discarded, never written
                 summary.stopped = true;
                 break;
             }
-            if (halted) break; // the previous frame failed to write, or under --fail-fast
+            if (halted) break; // an earlier frame failed to write, or under --fail-fast
             ExrOptions exr;
             exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
             exr.compression = exrCompression(frameScene.output.compression);
@@ -269,9 +295,9 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                 exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
             std::future<double> write =
                 writeFrameFiles(event.exr, event.png, std::move(image), std::move(exr));
-            pending = PendingWrite{std::move(event), renderSeconds, std::move(write)};
+            pending.push_back(PendingWrite{std::move(event), renderSeconds, std::move(write)});
         } catch (const Error& e) {
-            finishPending();
+            finishAll();
             event.kind = FrameEvent::Kind::Failed;
             event.error = e.what();
             // A JSON pointer is a place in the scene file: name the file too.
@@ -289,7 +315,7 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             report(event);
         }
     }
-    finishPending();
+    finishAll();
     summary.volumeUploads = renderer ? renderer->uploads() : 0;
     summary.totalSeconds = secondsSince(runStart);
     return summary;

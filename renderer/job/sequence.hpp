@@ -8,11 +8,13 @@
 // sequence unless a track animates the volume itself); the pipelines live for
 // the whole run.
 #include "gpu/context.hpp"
+#include "io/atomic_file.hpp"
 #include "io/exr.hpp"
 #include "io/image.hpp"
 #include "job/render_job.hpp"
 #include "scene/scene.hpp"
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <future>
@@ -40,6 +42,18 @@ void createOutputFolder(const std::filesystem::path& file);
 std::future<double> writeFrameFiles(std::filesystem::path exr,
                                     std::optional<std::filesystem::path> png, Image image,
                                     ExrOptions options);
+
+/// How many frames' files a sequence writes at once by default: one per core,
+/// up to kMostWriters, and as many as kWriteQueueBytes of images allow (at
+/// least one). Writes pile up only where they are slower than the render (a
+/// GPU that renders a frame in milliseconds); on two cores that both render
+/// (lavapipe) one frame's write is done long before the next frame is.
+inline constexpr int kMostWriters = 8;
+/// The most SequenceOptions::writers may ask for: each write's temporary is
+/// then one a second signal can remove (io/atomic_file.hpp).
+inline constexpr int kMostWritersAllowed = kTrackedTemporaries;
+inline constexpr std::size_t kWriteQueueBytes = std::size_t{512} << 20;
+int writesInFlight(unsigned cores, std::size_t frameBytes);
 
 /// Parses "A..B" or "N" (frame numbers >= 0); throws InputError naming --frames.
 FrameRange parseFrameRange(const std::string& text);
@@ -73,6 +87,10 @@ struct SequenceOptions {
     bool skipExisting = false;        ///< leave frames whose files exist untouched
     bool failFast = false;            ///< stop at the first failed frame
     RenderOverrides overrides;
+    /// Frames whose files may be written at once while later frames render,
+    /// up to kMostWritersAllowed; 0: writesInFlight(the machine's cores, the
+    /// frame's bytes).
+    int writers = 0;
     std::function<void(const FrameEvent&)> onFrame; ///< progress; may be empty
     std::function<bool()> stopRequested;            ///< polled between steps; may be empty
 };

@@ -75,6 +75,11 @@ TEST_F(CliTest, UsageErrorsExitTwo) {
     EXPECT_EQ(run("render " + scene.string() + " --size 0x5").code, 2);
     EXPECT_EQ(run("render " + scene.string() + " --size big").code, 2);
     EXPECT_EQ(run("render " + scene.string() + " --no-such-flag").code, 2);
+    for (const char* writers : {"0", "33", "two"}) {
+        CommandResult bad = run("render " + scene.string() + " --writers " + writers);
+        EXPECT_EQ(bad.code, 2) << writers;
+        EXPECT_NE(bad.output.find("--writers"), std::string::npos) << bad.output;
+    }
     EXPECT_EQ(run("render").code, 2);
     EXPECT_EQ(run("").code, 2);
     CommandResult missing = run("render " + (m_dir / "absent.json").string());

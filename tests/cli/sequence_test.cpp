@@ -264,45 +264,96 @@ TEST_F(CliTest, ASecondSignalEndsTheRunAtOnceLeavingNoTemporaries) {
     }
 }
 
-TEST_F(CliTest, AFullDiskStopsTheRunKeepingFinishedFramesWhole) {
-    // A 40 KiB tmpfs (mounted in a user and mount namespace of its own, so no
-    // root is needed) holds a few 96^2 frames of the sequence's 20, each an
-    // EXR and its PNG preview: both or neither.
-    if (runProgram("unshare", "-rm true").code != 0)
-        GTEST_SKIP() << "needs unshare -rm (user and mount namespaces) to mount a small tmpfs";
-    const fs::path scene = write("turn.json", turntable(19, 24, 96));
-    const fs::path disk = m_dir / "disk", kept = m_dir / "kept";
+namespace {
+
+// A sequence of 20 96^2 frames, each an EXR and its PNG preview, written to
+// a 40 KiB tmpfs that holds a few of them (mounted in a user and mount
+// namespace of its own, so no root is needed) with `writers` frames written
+// at once. Returns the run and the names left on the disk (empty when the
+// namespaces are not available).
+struct FullDiskRun {
+    CommandResult result;
+    std::vector<std::string> exrs, previews;
+    bool available = false;
+};
+
+FullDiskRun runOnAFullDisk(const fs::path& dir, const fs::path& scene, int writers) {
+    FullDiskRun run;
+    if (runProgram("unshare", "-rm true").code != 0) return run;
+    run.available = true;
+    const fs::path disk = dir / "disk", kept = dir / "kept";
     fs::create_directories(disk);
     fs::create_directories(kept);
     // The tmpfs vanishes with the namespace: its files are copied out first.
     const std::string script = "mount -t tmpfs -o size=40k tmpfs " + disk.string() + " && " +
                                CUTAWAY_BINARY + " render " + scene.string() + " -o " +
-                               (disk / "t_####.exr").string() + " --png; rc=$?; cp -a " +
-                               disk.string() + "/. " + kept.string() + "; exit $rc";
-    CommandResult r = runProgram("unshare", "-rm sh -c '" + script + "'");
+                               (disk / "t_####.exr").string() + " --png --writers " +
+                               std::to_string(writers) + "; rc=$?; cp -a " + disk.string() + "/. " +
+                               kept.string() + "; exit $rc";
+    run.result = runProgram("unshare", "-rm sh -c '" + script + "'");
+    for (const auto& entry : fs::directory_iterator(kept)) {
+        const fs::path name = entry.path().filename();
+        (name.extension() == ".png" ? run.previews : run.exrs).push_back(name.string());
+        if (name.extension() == ".exr") EXPECT_EQ(readExr(entry.path()).width, 96) << name;
+    }
+    std::sort(run.exrs.begin(), run.exrs.end());
+    std::sort(run.previews.begin(), run.previews.end());
+    // Both files of a frame or neither; nothing else (no temporaries).
+    std::vector<std::string> expected;
+    for (const std::string& name : run.exrs)
+        expected.push_back(fs::path(name).replace_extension(".png").string());
+    EXPECT_EQ(run.previews, expected) << "a preview without its EXR, or the reverse";
+    const CommandResult& r = run.result;
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("No space left on device"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("stopped: a frame could not be written"), std::string::npos)
         << r.output;
-    std::vector<std::string> names, previews;
-    for (const std::string& name : files(kept))
-        (fs::path(name).extension() == ".png" ? previews : names).push_back(name);
-    ASSERT_GE(names.size(), 1u) << r.output;
-    ASSERT_LT(names.size(), 20u) << "the disk did not fill up";
+    EXPECT_GE(run.exrs.size(), 1u) << r.output;
+    EXPECT_LT(run.exrs.size(), 20u) << "the disk did not fill up";
+    return run;
+}
+
+} // namespace
+
+TEST_F(CliTest, AFullDiskStopsTheRunKeepingFinishedFramesWhole) {
+    const fs::path scene = write("turn.json", turntable(19, 24, 96));
+    const FullDiskRun run = runOnAFullDisk(m_dir, scene, 1);
+    if (!run.available)
+        GTEST_SKIP() << "needs unshare -rm (user and mount namespaces) to mount a small tmpfs";
+    const std::vector<std::string>& names = run.exrs;
+    const std::string& output = run.result.output;
     EXPECT_EQ(names, frameNames(0, static_cast<int>(names.size()) - 1)) << "a gap or a stray file";
-    for (const std::string& name : names) {
-        EXPECT_EQ(readExr(kept / name).width, 96) << name;
-        EXPECT_TRUE(std::count(previews.begin(), previews.end(),
-                               fs::path(name).replace_extension(".png").string()))
-            << name << " without its preview";
-    }
-    EXPECT_EQ(previews.size(), names.size()) << "a preview without its EXR";
-    // The run stopped at the frame that did not fit: one failure reported.
+    // One frame written at a time: the run stopped at the frame that did not
+    // fit, and only that one failed.
     const std::string failed = "frame " + std::to_string(names.size()) + " failed";
-    EXPECT_NE(r.output.find(failed), std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("frame " + std::to_string(names.size() + 1) + " failed"),
+    EXPECT_NE(output.find(failed), std::string::npos) << output;
+    EXPECT_EQ(output.find("frame " + std::to_string(names.size() + 1) + " failed"),
               std::string::npos)
-        << r.output;
+        << output;
+}
+
+// Frames written at once when the disk fills: every frame before the first
+// that failed is whole, each failure is reported, and what finished after
+// it is whole too (it was already being written).
+TEST_F(CliTest, AFullDiskWithFramesWrittenAtOnceLeavesOnlyWholeFrames) {
+    const fs::path scene = write("turn.json", turntable(19, 24, 96));
+    const FullDiskRun run = runOnAFullDisk(m_dir, scene, 3);
+    if (!run.available)
+        GTEST_SKIP() << "needs unshare -rm (user and mount namespaces) to mount a small tmpfs";
+    const std::string& output = run.result.output;
+    const std::size_t firstFailed = output.find(" failed");
+    ASSERT_NE(firstFailed, std::string::npos) << output;
+    const std::size_t at = output.rfind("frame ", firstFailed);
+    ASSERT_NE(at, std::string::npos) << output;
+    const int first = std::stoi(output.substr(at + 6));
+    const std::vector<std::string> before = frameNames(0, first - 1);
+    ASSERT_LE(before.size(), run.exrs.size()) << output;
+    EXPECT_TRUE(std::equal(before.begin(), before.end(), run.exrs.begin()))
+        << "a frame before the first failure is missing";
+    EXPECT_FALSE(std::count(run.exrs.begin(), run.exrs.end(), frameNames(first, first)[0]));
+    // At most the two frames being written beside it may have finished after it.
+    for (const std::string& name : run.exrs)
+        EXPECT_LE(name, frameNames(first + 2, first + 2)[0]) << name << " rendered after the stop";
 }
 
 // A frame whose preview cannot be written leaves no EXR either: its files
