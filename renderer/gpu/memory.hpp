@@ -38,7 +38,7 @@ std::string allocationProblem(VkDeviceSize size, VkDeviceSize inUse, const Memor
 /// with all of `required` and all of `preferred`, else the first with
 /// `required`; none if no type has it. Buffers the host reads back prefer
 /// HOST_CACHED: discrete GPUs list a write-combined host type first, and the
-/// host reads such memory uncached, a few GB/s at best.
+/// host reads such memory uncached, word by word from RAM.
 std::optional<uint32_t> chooseMemoryType(const VkPhysicalDeviceMemoryProperties& memory,
                                          uint32_t typeBits, VkMemoryPropertyFlags required,
                                          VkMemoryPropertyFlags preferred = 0);
