@@ -125,7 +125,8 @@ void checkOutputPaths(const Scene& scene, const SequenceOptions& options);
 /// Renders and writes the frames. Per-frame errors are reported through
 /// onFrame and counted; a frame interrupted by stopRequested is discarded
 /// (never written). A frame whose files cannot be written (disk full) fails
-/// and ends the run: its temporaries are removed, earlier frames stay whole.
+/// and ends the run: its temporaries are removed, earlier frames stay whole,
+/// and frames being written beside it (SequenceOptions::writers) finish.
 /// A frame past a device limit or the memory budget (ResourceError) also
 /// ends the run.
 /// Errors that concern the whole run (no device) propagate.
