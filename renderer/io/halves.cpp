@@ -26,7 +26,7 @@ __attribute__((target("avx,f16c"))) void toHalvesF16c(const float* in, half* out
         v = _mm256_and_ps(v, _mm256_cmp_ps(v, v, _CMP_ORD_Q)); // NaN -> +0
         v = _mm256_min_ps(_mm256_max_ps(v, least), most);
         const __m128i h = _mm256_cvtps_ph(v, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
-        std::memcpy(out + i, &h, sizeof h); // half is a 16-bit value type
+        std::memcpy(static_cast<void*>(out + i), &h, sizeof h); // half: a 16-bit value type
     }
     for (; i < count; ++i)
         out[i] = toHalf(in[i]);
