@@ -4,6 +4,7 @@
 #include <cstring>
 
 #if (defined(__x86_64__) || defined(__i386__)) && defined(__GNUC__)
+#include <cpuid.h>
 #include <immintrin.h>
 #define CUTAWAY_F16C 1
 #endif
@@ -32,8 +33,14 @@ __attribute__((target("avx,f16c"))) void toHalvesF16c(const float* in, half* out
         out[i] = toHalf(in[i]);
 }
 
+// F16C from CPUID (clang's __builtin_cpu_supports does not know it); AVX
+// through the builtin, which also asks whether the system saves its registers.
 bool hasF16c() {
-    static const bool has = __builtin_cpu_supports("avx") && __builtin_cpu_supports("f16c");
+    static const bool has = [] {
+        unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+        if (__get_cpuid(1, &eax, &ebx, &ecx, &edx) == 0) return false;
+        return (ecx & bit_F16C) != 0 && __builtin_cpu_supports("avx");
+    }();
     return has;
 }
 #endif

@@ -69,7 +69,7 @@ TEST(Halves, ManyAtOnceMatchOneByOneForEveryHalfAndTheTiesBetween) {
         values.push_back(special);
     // Counts that leave a remainder after the eight-wide steps.
     for (std::size_t extra = 0; extra < 8; ++extra) {
-        values.push_back(fromBits(0x3f800000u + extra));
+        values.push_back(fromBits(0x3f800000u + static_cast<std::uint32_t>(extra)));
         EXPECT_EQ(differences(values), 0) << values.size() << " values";
     }
 }

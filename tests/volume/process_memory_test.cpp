@@ -8,6 +8,9 @@
 #include <sys/resource.h>
 
 namespace cutaway::test {
+
+// glibc only; sanitizers replace its allocator.
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 namespace {
 
 long minorFaults() {
@@ -29,7 +32,6 @@ long faultsOfABlock(std::size_t bytes) {
 
 } // namespace
 
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
 TEST(ProcessMemory, AFramesBufferIsReusedAndAVolumeIsHandedBack) {
     unmapLargeBlocksWhenFreed();
     constexpr std::size_t kFrame = 4 << 20; // a 512x512 frame of RGBA floats
