@@ -165,6 +165,7 @@ nlohmann::json benchTurntable(const gpu::Context& ctx, const std::vector<Dataset
                 {"sustained_fps", summary.rendered / summary.totalSeconds},
                 {"steady_fps", steadyFps},
                 {"first_frame_s", done.empty() ? 0.0 : done.front()},
+                {"last_frame_s", done.empty() ? 0.0 : done.back()},
                 {"frame_ms_median", s.median},
                 {"single_fps_before", singleBefore},
                 {"single_fps_after", singleAfter},
