@@ -1,19 +1,26 @@
 #!/usr/bin/env python3
-"""Writes the latest benchmark tables into docs/performance.md.
+"""Writes benchmark tables into a generated section of docs/performance.md.
 
-Usage: report.py RESULTS_JSON MARKDOWN
+Usage: report.py RESULTS_JSON MARKDOWN [--section NAME]
 
 RESULTS_JSON is the list of records `make bench` writes (cutaway's frames,
 bakes and turntable, and VTK's frames). The tables replace whatever lies
-between the markers <!-- results:begin --> and <!-- results:end --> in
-MARKDOWN; the rest of the page (the paper's Table 1, the notes) is left as
-it is. Standard library only.
+between the markers <!-- NAME:begin --> and <!-- NAME:end --> in MARKDOWN
+(NAME: `results` unless given); the rest of the page is left as it is.
+`make bench` writes the `results` section from bench/results.json; the GPU
+section is written the same way from a GPU machine's records:
+
+    report.py docs/performance/results_nvidia_h200.json docs/performance.md --section results-gpu
+
+Standard library only.
 """
+import argparse
 import json
 import statistics
-import sys
 
-BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
+
+def markers(section):
+    return f"<!-- {section}:begin -->", f"<!-- {section}:end -->"
 
 
 def dims(d):
@@ -24,18 +31,44 @@ def ms(v):
     return "-" if v is None else f"{v:.0f}"
 
 
+# Columns of the frame table, in this order; others follow in the order met.
+METHODS = ["raycast", "slicing"]
+ALIGNMENTS = ["none", "axis", "surface", "segment"]
+METHOD_NAMES = {"raycast": "ray cast", "slicing": "slicing"}
+
+
+def ordered(known, values):
+    return [v for v in known if v in values] + [v for v in dict.fromkeys(values) if v not in known]
+
+
+def frame_ms(v):
+    """A frame time: one decimal below 100 ms (a GPU's frames), whole above."""
+    return "-" if v is None else (f"{v:.1f}" if v < 100 else f"{v:.0f}")
+
+
 def frame_rows(records):
-    vtk = {(r["dataset"], r["slice_spacing"]): r for r in records if r.get("renderer") == "vtk"}
-    out = ["| dataset | dims | alignment | operator | method | d | median ms | min ms | max ms |"
-           " fps | VTK median ms (same work) |",
-           "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for r in records:
-        if r.get("renderer") != "cutaway" or r.get("kind") == "turntable":
-            continue
-        v = vtk.get((r["dataset"], r["slice_spacing"])) if r["alignment"] == "none" else None
-        out.append(f"| {r['dataset']} | {dims(r['dims'])} | {r['alignment']} | {r['operator']} |"
-                   f" {r.get('method', 'slicing')} | {r['slice_spacing']:.1f} | {r['ms_median']:.0f} | {r['ms_min']:.0f} |"
-                   f" {r['ms_max']:.0f} | {r['fps']:.2f} | {ms(v['ms_median']) if v else ''} |")
+    """One row per dataset and slice spacing, a column per method and alignment: median ms."""
+    frames = [r for r in records if r.get("renderer") == "cutaway" and r.get("kind") != "turntable"
+              and "ms_median" in r]
+    if not frames:
+        return []
+    methods = ordered(METHODS, [r.get("method", "slicing") for r in frames])
+    alignments = ordered(ALIGNMENTS, [r["alignment"] for r in frames])
+    cells, rows, operators = {}, {}, {}
+    for r in frames:
+        row = (r["dataset"], r["slice_spacing"])
+        rows.setdefault(row, r)
+        if r["operator"] != "none":
+            operators.setdefault(r["dataset"], r["operator"])
+        cells[row + (r.get("method", "slicing"), r["alignment"])] = r["ms_median"]
+    columns = [(m, a) for m in methods for a in alignments]
+    head = " | ".join(f"{METHOD_NAMES.get(m, m)}: {a}" if a == alignments[0] else a
+                      for m, a in columns)
+    out = [f"| dataset | dims | operator | d | {head} |", "|---" * (4 + len(columns)) + "|"]
+    for (dataset, d), first in rows.items():
+        values = " | ".join(frame_ms(cells.get((dataset, d, m, a))) for m, a in columns)
+        out.append(f"| {dataset} | {dims(first['dims'])} | {operators.get(dataset, 'none')} |"
+                   f" {d:.1f} | {values} |")
     return out
 
 
@@ -121,33 +154,44 @@ def turntable_lines(records):
     return out
 
 
-def main():
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    with open(sys.argv[1]) as f:
-        records = json.load(f)
+def section_lines(records):
     device = next((r.get("device") for r in records if r.get("device")), "unknown device")
     vtk = next((r.get("vtk_version") for r in records if r.get("renderer") == "vtk"), None)
-    lines = [BEGIN, "",
-             f"Measured by `make bench` on {device}; times in ms per 512x512 frame "
-             "(median of the timed frames after a warm-up, the view turning between frames); "
-             "bake times in ms, each the median of 3 runs.", ""]
-    lines += frame_rows(records) + [""] + paired_rows(records) + bake_rows(records) + [""]
-    lines += turntable_lines(records)
+    lines = [f"Measured by `make bench` on {device}. Frames: median ms per 512x512 frame"
+             " (after a warm-up, the view turning between frames); fps = 1000 / ms.", ""]
+    lines += frame_rows(records) + [""] + paired_rows(records)
+    lines += ["Bakes (ms, each the median of 3 runs) and peak memory (MiB):", ""]
+    lines += bake_rows(records) + [""] + turntable_lines(records)
     if vtk:
         lines += ["", f"VTK {vtk}: `vtkFixedPointVolumeRayCastMapper` on the same volume "
                   "(normalized as cutaway uploads it), view, image size, sample distance, "
                   "transfer function and shading, in the same run."]
-    lines += ["", END]
-    with open(sys.argv[2]) as f:
-        page = f.read()
-    if BEGIN not in page or END not in page:
-        sys.exit(f"report.py: {sys.argv[2]} has no {BEGIN} ... {END} section")
-    head, rest = page.split(BEGIN, 1)
-    tail = rest.split(END, 1)[1]
-    with open(sys.argv[2], "w") as f:
+    return lines
+
+
+def main():
+    parser = argparse.ArgumentParser(usage="report.py RESULTS_JSON MARKDOWN [--section NAME]")
+    parser.add_argument("results")
+    parser.add_argument("markdown")
+    parser.add_argument("--section", default="results",
+                        help="write between <!-- SECTION:begin --> and <!-- SECTION:end -->")
+    args = parser.parse_args()
+    try:
+        with open(args.results) as f:
+            records = json.load(f)
+        with open(args.markdown) as f:
+            page = f.read()
+    except (OSError, ValueError) as e:
+        parser.exit(2, f"report.py: {e}\n")
+    begin, end = markers(args.section)
+    if page.count(begin) != 1 or page.count(end) != 1 or page.index(begin) > page.index(end):
+        parser.exit(2, f"report.py: {args.markdown} has no single {begin} ... {end} section\n")
+    head, rest = page.split(begin, 1)
+    tail = rest.split(end, 1)[1]
+    lines = [begin, ""] + section_lines(records) + ["", end]
+    with open(args.markdown, "w") as f:
         f.write(head + "\n".join(lines) + tail)
-    print(f"report.py: wrote the results section of {sys.argv[2]}")
+    print(f"report.py: wrote the {args.section} section of {args.markdown}")
 
 
 if __name__ == "__main__":
