@@ -8,9 +8,9 @@
 #include "core/error.hpp"
 #include "job/render_job.hpp"
 #include "operators/operator_geometry.hpp"
+#include "render/classify/transfer_table.hpp"
 #include "render/feature_fields.hpp"
-#include "render/ray_cells.hpp"
-#include "render/transfer_table.hpp"
+#include "render/skipping/ray_cells.hpp"
 #include "scene/scene.hpp"
 #include "vtk_spec.hpp"
 
@@ -149,7 +149,7 @@ std::vector<DatasetEntry> readTable(const std::filesystem::path& file) {
 namespace {
 
 // The samples of one ray-cast frame of `scene`, by kind, summed over its
-// pixels (SliceRenderer::setCensus).
+// pixels (VolumeRenderer::setCensus).
 nlohmann::json censusOf(job::FrameRenderer& renderer, const Scene& scene) {
     renderer.setCensus(true);
     const Image counts = renderer.render(scene);

@@ -25,7 +25,7 @@ struct BenchOptions {
     std::filesystem::path vtkDir;    ///< where to write the VTK comparison's spec; empty = none
     std::vector<SceneSetting> extra; ///< --set overrides applied to every row (experiments)
     /// Ray-cast rows also count their first frame's samples by kind
-    /// (SliceRenderer::setCensus): the record's "census", samples per frame.
+    /// (VolumeRenderer::setCensus): the record's "census", samples per frame.
     bool census = false;
     /// Turn-taking with another benchmark process (bench/baton.hpp,
     /// bench/ab_interleave.py): the turn's file (empty: none), this process's

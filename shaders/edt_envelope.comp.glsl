@@ -11,8 +11,8 @@
 #include "shared/feature_bake.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(set = 0, binding = 1, r16f) uniform readonly image3D srcImage;
-layout(set = 0, binding = 2, r16f) uniform writeonly image3D dstImage;
+layout(set = 0, binding = CW_FEATURE_BIND_SRC, r16f) uniform readonly image3D srcImage;
+layout(set = 0, binding = CW_FEATURE_BIND_DST, r16f) uniform writeonly image3D dstImage;
 layout(push_constant) uniform Push { FeatureBakeParams params; };
 
 int v[kEdtMaxLine];      // abscissae of the parabolas in the envelope

@@ -10,8 +10,8 @@
 #include "shared/feature_bake.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(set = 0, binding = 0) uniform sampler3D sourceTex;
-layout(set = 0, binding = 2, r16f) uniform image3D dstImage;
+layout(set = 0, binding = CW_FEATURE_BIND_SOURCE) uniform sampler3D sourceTex;
+layout(set = 0, binding = CW_FEATURE_BIND_DST, r16f) uniform image3D dstImage;
 layout(push_constant) uniform Push { FeatureBakeParams params; };
 
 void main() {

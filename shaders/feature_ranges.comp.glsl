@@ -10,8 +10,8 @@
 #include "shared/feature_bake.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(set = 0, binding = 0, r16f) uniform readonly image3D field;
-layout(set = 0, binding = 1, rg8i) uniform writeonly iimage3D ranges;
+layout(set = 0, binding = CW_RANGES_BIND_FIELD, r16f) uniform readonly image3D field;
+layout(set = 0, binding = CW_RANGES_BIND_OUT, rg8i) uniform writeonly iimage3D ranges;
 layout(push_constant) uniform Push { FieldRangeParams params; };
 
 // Ranges of the two cells' windows (xy: the first's, zw: the second's), min

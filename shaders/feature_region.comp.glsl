@@ -11,9 +11,9 @@
 #define kTile (kGroup + 2)
 #define kTileTexels (kTile.x * kTile.y * kTile.z)
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
-layout(set = 0, binding = 0) uniform sampler3D volumeTex; // normalized values
-layout(set = 0, binding = 1) uniform sampler3D maskTex;   // M over the volume's grid
-layout(set = 0, binding = 2, rg16f) uniform writeonly image3D region;
+layout(set = 0, binding = CW_REGION_BIND_VALUES) uniform sampler3D volumeTex; // normalized values
+layout(set = 0, binding = CW_REGION_BIND_MASK) uniform sampler3D maskTex;   // M over the volume's grid
+layout(set = 0, binding = CW_REGION_BIND_OUT, rg16f) uniform writeonly image3D region;
 layout(push_constant) uniform Push { FeatureRegionParams params; };
 
 shared float tileMask[kTileTexels]; // 1 (inside: skipped) beyond the grid

@@ -7,8 +7,8 @@
 #include "shared/feature_bake.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(set = 0, binding = 0) uniform sampler3D sourceTex;
-layout(set = 0, binding = 3, r16f) uniform image3D field;
+layout(set = 0, binding = CW_FEATURE_BIND_SOURCE) uniform sampler3D sourceTex;
+layout(set = 0, binding = CW_FEATURE_BIND_OUT, r16f) uniform image3D field;
 layout(push_constant) uniform Push { FeatureBakeParams params; };
 
 void main() {

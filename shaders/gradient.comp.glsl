@@ -2,6 +2,7 @@
 // Bakes the gradient of the normalized volume once per volume (section 5 of
 // the paper: "the gradients can also be stored as textures"). 3x3x3 Sobel-style
 // operator; see shared/gradient.h.
+// flavours: storage
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gradient.h"
 
@@ -15,21 +16,25 @@
 #define kColumn 16
 #define kRun 4
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(set = 0, binding = 0) uniform sampler3D volumeTex;
-layout(set = 0, binding = 1, rgba8_snorm) uniform writeonly image3D gradientImage;
+layout(set = 0, binding = CW_GRADIENT_BIND_VALUES) uniform sampler3D volumeTex;
+layout(set = 0, binding = CW_GRADIENT_BIND_OUT, rgba8_snorm) uniform writeonly image3D gradientImage;
+#ifdef CW_STORAGE_PATHS
 // The values read as the storage image they also are (bake::ValueStorageBindings):
 // 0: sampled; 1: the R8 image volumeImage8; 2: the R16 one, volumeImage16.
 // On lavapipe a texel fetch of a sampled 8- or 16-bit image is a call,
 // imageLoad an inline load (as for the renderers, sample_common.h).
-layout(constant_id = 0) const int cwStorageFetch = 0;
-layout(set = 0, binding = 2, r8) uniform readonly image3D volumeImage8;
-layout(set = 0, binding = 3, r16) uniform readonly image3D volumeImage16;
+layout(constant_id = CW_GRADIENT_SPEC_STORAGE_FETCH) const int cwStorageFetch = 0;
+layout(set = 0, binding = CW_GRADIENT_BIND_VALUES_R8, r8) uniform readonly image3D volumeImage8;
+layout(set = 0, binding = CW_GRADIENT_BIND_VALUES_R16, r16) uniform readonly image3D volumeImage16;
+#endif
 layout(push_constant) uniform Push { GradientParams params; };
 
 float at(ivec3 p) {
     ivec3 q = clamp(p, ivec3(0), params.dims - 1);
+#ifdef CW_STORAGE_PATHS
     if (cwStorageFetch == 1) return imageLoad(volumeImage8, q).r;
     if (cwStorageFetch == 2) return imageLoad(volumeImage16, q).r;
+#endif
     return texelFetch(volumeTex, q, 0).r;
 }
 

@@ -16,12 +16,12 @@
 // window lives in registers; a window indexed at run time (a ring) is kept
 // in memory lane by lane on lavapipe, 3-6x slower. Taps beyond params.radius
 // weigh 0 and add exactly nothing: the sum is the CPU twin's, term by term.
-layout(constant_id = 0) const int kWindow = kBlurMaxRadius;
+layout(constant_id = CW_FEATURE_SPEC_BLUR_WINDOW) const int kWindow = kBlurMaxRadius;
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-layout(set = 0, binding = 0) uniform sampler3D sourceTex;
-layout(set = 0, binding = 1, r16f) uniform readonly image3D srcImage;
-layout(set = 0, binding = 2, r16f) uniform writeonly image3D dstImage;
+layout(set = 0, binding = CW_FEATURE_BIND_SOURCE) uniform sampler3D sourceTex;
+layout(set = 0, binding = CW_FEATURE_BIND_SRC, r16f) uniform readonly image3D srcImage;
+layout(set = 0, binding = CW_FEATURE_BIND_DST, r16f) uniform writeonly image3D dstImage;
 layout(push_constant) uniform Push { FeatureBakeParams params; };
 
 shared float weights[kBlurMaxRadius + 1];

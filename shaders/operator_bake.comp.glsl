@@ -8,7 +8,7 @@
 #include "shared/operators.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
-layout(set = 0, binding = 0, rgba16f) uniform writeonly image3D operatorMap;
+layout(set = 0, binding = CW_OPBAKE_BIND_MAP, rgba16f) uniform writeonly image3D operatorMap;
 layout(push_constant) uniform Push { OperatorBakeParams bake; };
 
 void main() {

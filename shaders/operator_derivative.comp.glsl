@@ -19,8 +19,8 @@
 #include "shared/operator_frame.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
-layout(set = 0, binding = 0) uniform sampler3D operatorMap;
-layout(set = 0, binding = 1, rgba16f) uniform writeonly image3D derivatives;
+layout(set = 0, binding = CW_OPBAKE_BIND_MAP) uniform sampler3D operatorMap;
+layout(set = 0, binding = CW_OPBAKE_BIND_DERIVATIVES, rgba16f) uniform writeonly image3D derivatives;
 layout(push_constant) uniform Push { OperatorBakeParams bake; };
 
 // The central difference along `axis` at map texel t, per local unit.

@@ -1,4 +1,5 @@
 #version 460
+// flavours: storage
 #extension GL_GOOGLE_include_directive : require
 #define CW_WRITE_ID
 #include "glsl/slice_operator.h"

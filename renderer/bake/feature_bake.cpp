@@ -198,11 +198,14 @@ std::size_t axisStride(glm::ivec3 dims, int axis) {
 
 FeatureBaker::FeatureBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    const auto storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     m_setLayout = gpu::createSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, nullptr},
-              {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-              {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-              {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr}});
+        ctx,
+        {{CW_FEATURE_BIND_SOURCE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, nullptr},
+         {CW_FEATURE_BIND_SRC, storage, 1, stage, nullptr},
+         {CW_FEATURE_BIND_DST, storage, 1, stage, nullptr},
+         {CW_FEATURE_BIND_OUT, storage, 1, stage, nullptr}},
+        "feature bake");
     m_layout =
         gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::FeatureBakeParams), stage);
     auto make = [&](const uint32_t* words, std::size_t bytes) {
@@ -223,7 +226,7 @@ VkPipeline FeatureBaker::blurPipeline(int radius) const {
     while (k + 1 < kBlurWindows.size() && radius > kBlurWindows[k])
         ++k;
     if (!m_blurWindow[k]) {
-        const VkSpecializationMapEntry entry{0, 0, sizeof(int32_t)};
+        const VkSpecializationMapEntry entry{CW_FEATURE_SPEC_BLUR_WINDOW, 0, sizeof(int32_t)};
         const int32_t window = kBlurWindows[k];
         const VkSpecializationInfo info{1, &entry, sizeof window, &window};
         m_blurWindow[k] =
@@ -237,14 +240,17 @@ gpu::DescriptorSet FeatureBaker::makeSet(const gpu::Image& texture, const gpu::I
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}});
-    gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                              texture.view.get(), kValuesLayout, m_sampler.get());
-    gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, src.view.get(),
-                              VK_IMAGE_LAYOUT_GENERAL);
-    gpu::writeImageDescriptor(m_ctx, set.set, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, dst.view.get(),
-                              VK_IMAGE_LAYOUT_GENERAL);
-    gpu::writeImageDescriptor(m_ctx, set.set, 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
-                              VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_FEATURE_BIND_SOURCE,
+                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, texture.view.get(),
+                              texture.layout, m_sampler.get());
+    const auto storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    const auto general = VK_IMAGE_LAYOUT_GENERAL;
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_FEATURE_BIND_SRC, storage, src.view.get(),
+                              general);
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_FEATURE_BIND_DST, storage, dst.view.get(),
+                              general);
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_FEATURE_BIND_OUT, storage, out.view.get(),
+                              general);
     return set;
 }
 

@@ -33,7 +33,7 @@ public:
     explicit FeatureBaker(const gpu::Context& ctx);
 
     /// Surface alignment: the distance field DT. `values` is the uploaded volume
-    /// texture (R16_UNORM or R8_UNORM, 3D, kValuesLayout; see bake/volume_upload.hpp).
+    /// texture (R16_UNORM or R8_UNORM, 3D, in its Image::layout; bake/volume_upload.hpp).
     /// A voxel is object when its normalized value > `threshold` (0..1), else background.
     /// Result: kFeatureFieldFormat (R16F), same extent, kFeatureLayout, usage
     /// SAMPLED | STORAGE | TRANSFER_SRC: the exact Euclidean distance in mm from the voxel
@@ -52,7 +52,7 @@ public:
     gpu::Image segmentMask(const std::vector<uint8_t>& indicator, glm::ivec3 dims,
                            glm::dvec3 spacing, double bandMm) const;
     /// The same from the indicator already uploaded: an R8_UNORM 3D texture,
-    /// 1 inside (see uploadMask), in kValuesLayout.
+    /// 1 inside (see uploadMask).
     gpu::Image segmentMask(const gpu::Image& indicator, glm::dvec3 spacing, double bandMm) const;
 
 private:
@@ -61,7 +61,7 @@ private:
     static constexpr std::array<int, 4> kBlurWindows{4, 8, 16, 32};
     VkPipeline blurPipeline(int radius) const;
     /// A set with every binding written: 0 `texture` (sampled: values or a
-    /// mask, in kValuesLayout), 1 `src`, 2 `dst` and 3 `out` (r16f storage,
+    /// mask), 1 `src`, 2 `dst` and 3 `out` (r16f storage,
     /// may be one image, in GENERAL).
     gpu::DescriptorSet makeSet(const gpu::Image& texture, const gpu::Image& src,
                                const gpu::Image& dst, const gpu::Image& out) const;

@@ -69,9 +69,11 @@ FieldRanges fieldRangesCpu(const std::vector<float>& field, glm::ivec3 dims, int
 
 FieldRangeBaker::FieldRangeBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     const auto cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    m_setLayout =
-        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
-                                   {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
+    m_setLayout = gpu::createSetLayout(
+        ctx,
+        {{CW_RANGES_BIND_FIELD, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr},
+         {CW_RANGES_BIND_OUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}},
+        "field ranges");
     m_layout =
         gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::FieldRangeParams), cs);
     auto module =
@@ -87,10 +89,10 @@ FieldRanges FieldRangeBaker::ranges(const gpu::Image& field, int cellVoxels, flo
                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}});
-    gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, field.view.get(),
-                              kFeatureLayout);
-    gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
-                              VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_RANGES_BIND_FIELD,
+                              VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, field.view.get(), kFeatureLayout);
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_RANGES_BIND_OUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              out.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     shader::FieldRangeParams params{};
     params.dims = dims;
     params.cellVoxels = cellVoxels;

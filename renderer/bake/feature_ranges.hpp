@@ -1,7 +1,7 @@
 #pragma once
 // The range of a feature field (surface alignment's DT, segment alignment's M)
 // over each cell of the ray caster's grid, for empty-space skipping in an
-// operator's box (render/case_occupancy.hpp): where a field's range stays on
+// operator's box (render/skipping/case_occupancy.hpp): where a field's range stays on
 // one side of the mask's threshold, only one case of Eq. 4 can occur there.
 // One signed byte for each end (2 bytes a cell of 2^3 voxels: 1/8 of the
 // field's own size), computed by feature_ranges.comp and read back once per

@@ -23,10 +23,13 @@ VoxelRegion regionCovering(glm::ivec3 dims, glm::dvec3 spacing, glm::dvec3 gridL
 
 FeatureRegionBaker::FeatureRegionBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     const auto cs = VK_SHADER_STAGE_COMPUTE_BIT;
-    m_setLayout =
-        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
-                                   {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, cs, nullptr},
-                                   {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}});
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    m_setLayout = gpu::createSetLayout(
+        ctx,
+        {{CW_REGION_BIND_VALUES, sampled, 1, cs, nullptr},
+         {CW_REGION_BIND_MASK, sampled, 1, cs, nullptr},
+         {CW_REGION_BIND_OUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, cs, nullptr}},
+        "feature region");
     m_layout =
         gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::FeatureRegionParams), cs);
     auto module =
@@ -44,12 +47,14 @@ gpu::Image FeatureRegionBaker::bake(const gpu::Image& values, const gpu::Image& 
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
-    gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                              values.view.get(), kValuesLayout, m_sampler.get());
-    gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                              mask.view.get(), kFeatureLayout, m_sampler.get());
-    gpu::writeImageDescriptor(m_ctx, set.set, 2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
-                              VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_REGION_BIND_VALUES,
+                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, values.view.get(),
+                              values.layout, m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_REGION_BIND_MASK,
+                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, mask.view.get(),
+                              kFeatureLayout, m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_REGION_BIND_OUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+                              out.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     shader::FeatureRegionParams params{};
     params.lo = region.lo;
     params.size = region.size;

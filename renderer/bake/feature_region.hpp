@@ -36,7 +36,7 @@ class FeatureRegionBaker {
 public:
     explicit FeatureRegionBaker(const gpu::Context& ctx);
 
-    /// `values`: the uploaded volume (kValuesLayout); `mask`: its segment mask
+    /// `values`: the uploaded volume; `mask`: its segment mask
     /// (FeatureBaker::segmentMask, kFeatureLayout), on the same grid. Result: RG16F over
     /// `region`, SHADER_READ_ONLY_OPTIMAL for fragment and compute shaders.
     gpu::Image bake(const gpu::Image& values, const gpu::Image& mask, VoxelRegion region) const;

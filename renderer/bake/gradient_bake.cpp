@@ -3,6 +3,7 @@
 #include "bake/volume_upload.hpp"
 #include "gpu/pipeline.hpp"
 #include "gradient_comp.spv.h"
+#include "gradient_storage_comp.spv.h"
 #include "shared/gradient.h"
 
 #include <algorithm>
@@ -10,25 +11,31 @@
 
 namespace cutaway::bake {
 
-GradientBaker::GradientBaker(const gpu::Context& ctx) : m_ctx(ctx), m_valueBindings(ctx) {
+GradientBaker::GradientBaker(const gpu::Context& ctx) : GradientBaker(ctx, ctx.tuning()) {}
+
+GradientBaker::GradientBaker(const gpu::Context& ctx, const gpu::DeviceTuning& tuning)
+    : m_ctx(ctx), m_tuning(ctx.supported(tuning)), m_valueBindings(ctx) {
     const auto compute = VK_SHADER_STAGE_COMPUTE_BIT;
-    m_setLayout = gpu::createSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, nullptr},
-              {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
-              {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
-              {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
+    std::vector<VkDescriptorSetLayoutBinding> bindings{
+        {CW_GRADIENT_BIND_VALUES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, nullptr},
+        {CW_GRADIENT_BIND_OUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}};
+    if (m_tuning.storageValues) // the storage flavour's bindings
+        for (uint32_t b : {CW_GRADIENT_BIND_VALUES_R8, CW_GRADIENT_BIND_VALUES_R16})
+            bindings.push_back({b, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr});
+    m_setLayout = gpu::createSetLayout(ctx, bindings, "gradient bake");
     m_layout =
         gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::GradientParams), compute);
-    m_module = gpu::createShaderModule(ctx, gradient_comp_spv, sizeof(gradient_comp_spv));
+    m_module =
+        gpu::createShaderModule(ctx, m_tuning.storageValues ? gpu::spirv(gradient_storage_comp_spv)
+                                                            : gpu::spirv(gradient_comp_spv));
     m_sampler = gpu::createLinearSampler(ctx);
-    setStorageFetch(ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
 }
 
 VkPipeline GradientBaker::pipelineFor(int fetch) const {
     const std::lock_guard<std::mutex> lock(m_pipelinesMutex);
     if (!m_pipelines[fetch]) {
         const int32_t constant = fetch;
-        const VkSpecializationMapEntry entry{0, 0, sizeof constant};
+        const VkSpecializationMapEntry entry{CW_GRADIENT_SPEC_STORAGE_FETCH, 0, sizeof constant};
         const VkSpecializationInfo info{1, &entry, sizeof constant, &constant};
         m_pipelines[fetch] =
             gpu::createComputePipeline(m_ctx, m_layout.get(), m_module.get(), &info);
@@ -36,8 +43,9 @@ VkPipeline GradientBaker::pipelineFor(int fetch) const {
     return m_pipelines[fetch].get();
 }
 
-GradientLayout gradientLayoutFor(const gpu::Context& ctx, glm::ivec3 dims) {
-    if (ctx.properties().deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return GradientLayout::Linear;
+GradientLayout gradientLayoutFor(const gpu::Context& ctx, const gpu::DeviceTuning& tuning,
+                                 glm::ivec3 dims) {
+    if (!tuning.brickedGradients) return GradientLayout::Linear;
     const glm::ivec3 extent = shader::gradientBrickExtent(dims);
     const int most = static_cast<int>(ctx.properties().limits.maxImageDimension3D);
     return std::max({extent.x, extent.y, extent.z}) <= most ? GradientLayout::Bricked
@@ -46,7 +54,8 @@ GradientLayout gradientLayoutFor(const gpu::Context& ctx, glm::ivec3 dims) {
 
 gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing) const {
     const VkExtent3D e = values.extent;
-    return bake(values, spacing, gradientLayoutFor(m_ctx, glm::ivec3(e.width, e.height, e.depth)));
+    return bake(values, spacing,
+                gradientLayoutFor(m_ctx, m_tuning, glm::ivec3(e.width, e.height, e.depth)));
 }
 
 gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing,
@@ -59,17 +68,28 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing,
                                        static_cast<uint32_t>(size.z)},
                                       VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+    out.layout = bricked || m_tuning.storageImages() ? VK_IMAGE_LAYOUT_GENERAL
+                                                     : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}});
-    gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                              values.view.get(), kValuesLayout, m_sampler.get());
-    gpu::writeImageDescriptor(m_ctx, set.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_GRADIENT_BIND_VALUES,
+                              VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, values.view.get(),
+                              values.layout, m_sampler.get());
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_GRADIENT_BIND_OUT,
+                              VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.view.get(),
                               VK_IMAGE_LAYOUT_GENERAL);
-    const std::array<VkImageView, 2> storage = m_valueBindings.views(values);
-    for (uint32_t i = 0; i < 2; ++i)
-        gpu::writeImageDescriptor(m_ctx, set.set, 2 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                  storage[i], kValuesLayout);
+    if (m_tuning.storageValues) {
+        std::array<VkImageView, 2> storage{};
+        {
+            const std::lock_guard<std::mutex> lock(m_pipelinesMutex); // stand-ins made once
+            storage = m_valueBindings.views(values);
+        }
+        for (uint32_t i = 0; i < 2; ++i)
+            gpu::writeImageDescriptor(m_ctx, set.set, CW_GRADIENT_BIND_VALUES_R8 + i,
+                                      VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, storage[i],
+                                      VK_IMAGE_LAYOUT_GENERAL);
+    }
 
     shader::GradientParams params{};
     params.dims = dims;
@@ -78,10 +98,9 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing,
     params.halfInvSpacing = glm::vec3(0.5 / spacing);
 
     // The groups cover the grid (kRun wide, kColumn deep), not the bricked image.
-    const int fetch = m_storageFetch ? ValueStorageBindings::fetchOf(values) : 0;
+    const int fetch = m_tuning.storageValues ? ValueStorageBindings::fetchOf(values) : 0;
     gpu::computeIntoImage(m_ctx, out, pipelineFor(fetch), m_layout.get(), set.set, &params,
-                          sizeof(params), glm::uvec3(8 * 4, 8, 16), kGradientsLayout,
-                          glm::uvec3(dims));
+                          sizeof(params), glm::uvec3(8 * 4, 8, 16), out.layout, glm::uvec3(dims));
     return out;
 }
 

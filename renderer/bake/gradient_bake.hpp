@@ -4,6 +4,7 @@
 // shaders/shared/gradient.h for the encoding.
 #include "bake/volume_upload.hpp"
 #include "gpu/context.hpp"
+#include "gpu/device_tuning.hpp"
 #include "gpu/handle.hpp"
 #include "gpu/resources.hpp"
 
@@ -18,30 +19,33 @@ namespace cutaway::bake {
 /// CPU device the 8 texels of a sample then share cache lines.
 enum class GradientLayout { Linear, Bricked };
 
-/// Bricked on CPU devices (lavapipe) where the bricked image fits the
+/// Bricked where `tuning` asks (CPU devices) and the bricked image fits the
 /// device's 3D image size; linear on GPUs, whose samplers filter for free.
-GradientLayout gradientLayoutFor(const gpu::Context& ctx, glm::ivec3 dims);
-
-/// The layout the baked gradients are left in: GENERAL, since the bricked
-/// ones are read as a storage image (like the values, kValuesLayout).
-inline constexpr VkImageLayout kGradientsLayout = VK_IMAGE_LAYOUT_GENERAL;
+GradientLayout gradientLayoutFor(const gpu::Context& ctx, const gpu::DeviceTuning& tuning,
+                                 glm::ivec3 dims);
 
 class GradientBaker {
 public:
+    /// `tuning` (the device's by default) decides whether the bake reads the
+    /// values as a storage image (an inline load on lavapipe) instead of
+    /// sampling them (the texels are the same either way), how the
+    /// gradients lie and the layout they rest in.
     explicit GradientBaker(const gpu::Context& ctx);
+    GradientBaker(const gpu::Context& ctx, const gpu::DeviceTuning& tuning);
 
-    /// `values` is the uploaded volume (in bake::kValuesLayout). The result
-    /// is left in kGradientsLayout for fragment and compute shaders.
+    /// `values` is the uploaded volume (bake::uploadVolume). The result rests
+    /// in GENERAL when bricked or where the tuning takes storage paths (the
+    /// shaders may load it as a storage image), else in
+    /// SHADER_READ_ONLY_OPTIMAL (Image::layout), for fragment and compute
+    /// shaders.
     gpu::Image bake(const gpu::Image& values, glm::dvec3 spacing, GradientLayout layout) const;
     /// The same, in gradientLayoutFor's layout.
     gpu::Image bake(const gpu::Image& values, glm::dvec3 spacing) const;
 
-    /// Whether the bake reads the values as a storage image (an inline load
-    /// on lavapipe) instead of sampling them: on by default on CPU devices,
-    /// off on GPUs; only where the device can (DeviceFormats::storageValues).
-    /// The texels are the same either way.
-    void setStorageFetch(bool on) { m_storageFetch = on && m_ctx.formats().storageValues; }
-    bool storageFetch() const { return m_storageFetch; }
+    /// The paths it takes (supported by the device): what a volume it bakes
+    /// for is prepared for (render::prepareVolume).
+    const gpu::DeviceTuning& tuning() const { return m_tuning; }
+    bool storageFetch() const { return m_tuning.storageValues; }
 
 private:
     /// The pipeline for cwStorageFetch `fetch` (0 sampled, 1 R8, 2 R16),
@@ -49,14 +53,14 @@ private:
     VkPipeline pipelineFor(int fetch) const;
 
     const gpu::Context& m_ctx;
+    gpu::DeviceTuning m_tuning;
     gpu::DescriptorSetLayoutHandle m_setLayout;
     gpu::PipelineLayoutHandle m_layout;
     gpu::ShaderModuleHandle m_module;
     mutable std::mutex m_pipelinesMutex; ///< bake() may be called from several threads
     mutable gpu::PipelineHandle m_pipelines[3];
     gpu::SamplerHandle m_sampler;
-    ValueStorageBindings m_valueBindings;
-    bool m_storageFetch = false;
+    mutable ValueStorageBindings m_valueBindings; ///< its stand-ins are made on first use
 };
 
 } // namespace cutaway::bake

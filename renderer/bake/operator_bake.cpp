@@ -16,8 +16,9 @@ constexpr glm::uvec3 kGroup(8, 8, 4); // both shaders' local size
 
 OperatorBaker::OperatorBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     const auto compute = VK_SHADER_STAGE_COMPUTE_BIT;
-    m_setLayout =
-        gpu::createSetLayout(ctx, {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
+    m_setLayout = gpu::createSetLayout(
+        ctx, {{CW_OPBAKE_BIND_MAP, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}},
+        "operator bake");
     m_layout = gpu::createPipelineLayout(ctx, m_setLayout.get(), sizeof(shader::OperatorBakeParams),
                                          compute);
     auto module =
@@ -25,8 +26,10 @@ OperatorBaker::OperatorBaker(const gpu::Context& ctx) : m_ctx(ctx) {
     m_pipeline = gpu::createComputePipeline(ctx, m_layout.get(), module.get());
 
     m_derivativeSetLayout = gpu::createSetLayout(
-        ctx, {{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, nullptr},
-              {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}});
+        ctx,
+        {{CW_OPBAKE_BIND_MAP, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, nullptr},
+         {CW_OPBAKE_BIND_DERIVATIVES, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr}},
+        "operator derivatives");
     m_derivativeLayout = gpu::createPipelineLayout(ctx, m_derivativeSetLayout.get(),
                                                    sizeof(shader::OperatorBakeParams), compute);
     auto derivative = gpu::createShaderModule(ctx, operator_derivative_comp_spv,
@@ -49,16 +52,17 @@ BakedMap OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 lo,
                          {uint32_t(3 * half.x), uint32_t(half.y), uint32_t(half.z)}, usage);
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(m_ctx, m_setLayout.get(),
                                                         {{VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
-    gpu::writeImageDescriptor(m_ctx, set.set, 0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_OPBAKE_BIND_MAP, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
                               out.map.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::DescriptorSet derivativeSet = gpu::allocateDescriptorSet(
         m_ctx, m_derivativeSetLayout.get(),
         {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
-    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, 0,
+    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, CW_OPBAKE_BIND_MAP,
                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, out.map.view.get(),
                               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_nearest.get());
-    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, 1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                              out.derivatives.view.get(), VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, derivativeSet.set, CW_OPBAKE_BIND_DERIVATIVES,
+                              VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, out.derivatives.view.get(),
+                              VK_IMAGE_LAYOUT_GENERAL);
     shader::OperatorBakeParams push{};
     push.a = params.a;
     push.b = params.b;

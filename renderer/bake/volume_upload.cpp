@@ -106,17 +106,19 @@ std::vector<uint16_t> normalizeVolume(const Volume& volume, ValueWindow window) 
 
 namespace {
 
-// A 3D image of `format` whose texels `write` makes, sampled (and `extra`
-// usage), left in kValuesLayout for fragment and compute shaders.
+// A 3D image of `format` whose texels `write` makes, sampled (and a storage
+// image with `storage`), left in its resting layout (Image::layout) for
+// fragment and compute shaders.
 gpu::Image uploadValueImage(const gpu::Context& ctx, VkFormat format, glm::ivec3 dims,
-                            std::size_t texelBytes, const gpu::TexelWriter& write,
-                            VkImageUsageFlags extra) {
+                            std::size_t texelBytes, const gpu::TexelWriter& write, bool storage) {
     const VkExtent3D extent{static_cast<uint32_t>(dims.x), static_cast<uint32_t>(dims.y),
                             static_cast<uint32_t>(dims.z)};
     gpu::Image image =
         gpu::createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | extra);
-    gpu::uploadImage(ctx, image, texelBytes, write, kValuesLayout,
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                             (storage ? VK_IMAGE_USAGE_STORAGE_BIT : VkImageUsageFlags(0)));
+    image.layout = storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    gpu::uploadImage(ctx, image, texelBytes, write, image.layout,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     return image;
@@ -124,31 +126,54 @@ gpu::Image uploadValueImage(const gpu::Context& ctx, VkFormat format, glm::ivec3
 
 } // namespace
 
-gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window) {
+gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window,
+                        bool storage) {
     const ValueTexels texels(volume, window);
     return uploadValueImage(
         ctx, texels.format(), volume.dims, texels.texelBytes(),
         [&](std::size_t first, std::size_t count, std::byte* dst) {
             texels.write(first, count, dst);
         },
-        ctx.formats().storageValues ? VK_IMAGE_USAGE_STORAGE_BIT : 0);
+        storage && ctx.formats().storageValues);
 }
 
-ValueStorageBindings::ValueStorageBindings(const gpu::Context& ctx) : m_ctx(ctx) {
-    const bool storage = ctx.formats().storageValues;
-    const VkFormat format[2] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
-                                storage ? VK_FORMAT_R16_UNORM : VK_FORMAT_R8G8B8A8_UNORM};
+gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window) {
+    return uploadVolume(ctx, volume, window, ctx.tuning().storageValues);
+}
+
+const gpu::Image& ValueStorageBindings::standIn(int which) {
+    gpu::Image& image = m_standIns[which];
+    if (image.image) return image;
+    const bool storage = m_ctx.formats().storageValues;
+    const VkFormat formats[3] = {storage ? VK_FORMAT_R8_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
+                                 storage ? VK_FORMAT_R16_UNORM : VK_FORMAT_R8G8B8A8_UNORM,
+                                 VK_FORMAT_R8G8B8A8_SNORM};
+    const std::size_t bytes[3] = {storage ? 1u : 4u, storage ? 2u : 4u, 4u};
     const uint32_t zero = 0;
-    for (int i = 0; i < 2; ++i)
-        m_standIns[i] = gpu::createStorageVolume(
-            ctx, format[i], {1, 1, 1}, &zero, storage ? std::size_t(i + 1) : sizeof zero,
-            VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    image = gpu::createStorageVolume(m_ctx, formats[which], {1, 1, 1}, &zero, bytes[which],
+                                     VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
+                                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    return image;
 }
 
-std::array<VkImageView, 2> ValueStorageBindings::views(const gpu::Image& values) const {
-    std::array<VkImageView, 2> views{m_standIns[0].view.get(), m_standIns[1].view.get()};
-    if (m_ctx.formats().storageValues) views[fetchOf(values) - 1] = values.view.get();
+std::array<VkImageView, 2> ValueStorageBindings::views(const gpu::Image& values) {
+    std::array<VkImageView, 2> views{};
+    const int own = fetchOf(values); // 0: neither binding is the values'
+    for (int i = 0; i < 2; ++i)
+        views[i] = own == i + 1 ? values.view.get() : standIn(i).view.get();
     return views;
+}
+
+VkImageView ValueStorageBindings::gradientView(const gpu::Image& gradients) {
+    return gradients.layout == VK_IMAGE_LAYOUT_GENERAL ? gradients.view.get()
+                                                       : standIn(2).view.get();
+}
+
+int ValueStorageBindings::standIns() const {
+    int count = 0;
+    for (const gpu::Image& image : m_standIns)
+        count += image.image ? 1 : 0;
+    return count;
 }
 
 gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims) {
@@ -161,7 +186,7 @@ gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask,
 }
 
 gpu::Image uploadMask(const gpu::Context& ctx, glm::ivec3 dims, const gpu::TexelWriter& write) {
-    return uploadValueImage(ctx, VK_FORMAT_R8_UNORM, dims, 1, write, 0);
+    return uploadValueImage(ctx, VK_FORMAT_R8_UNORM, dims, 1, write, false);
 }
 
 } // namespace cutaway::bake

@@ -17,6 +17,7 @@ namespace cutaway::bake {
 struct ValueWindow {
     double lo = 0.0;
     double hi = 1.0;
+    bool operator==(const ValueWindow&) const = default;
 };
 
 /// A volume's texels. The value texture is R8_UNORM when every voxel's R16
@@ -45,42 +46,53 @@ private:
 /// R16 texels (x fastest), the CPU reference in tests and the VTK comparison's input.
 std::vector<uint16_t> normalizeVolume(const Volume& volume, ValueWindow window);
 
-/// The layout value textures rest in: GENERAL, in which they can be both
-/// sampled and, where the device can (DeviceFormats::storageValues), read as
-/// storage images (sample_common.h's cwStorageFetch). Every descriptor of a
-/// value texture names it.
-inline constexpr VkImageLayout kValuesLayout = VK_IMAGE_LAYOUT_GENERAL;
-
-/// A 3D image of the values (ValueTexels), sampled and, where the device can,
-/// a storage image too; left in kValuesLayout, readable by fragment and
-/// compute shaders.
+/// A 3D image of the values (ValueTexels), sampled by fragment and compute
+/// shaders. With `storage` (gpu::DeviceTuning::storageValues, where the
+/// device can: DeviceFormats::storageValues) it is a storage image too and
+/// rests in GENERAL, so shaders may load its texels; else it rests in
+/// SHADER_READ_ONLY_OPTIMAL. Image::layout says which.
+gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window,
+                        bool storage);
+/// The same with the device's tuning (Context::tuning).
 gpu::Image uploadVolume(const gpu::Context& ctx, const Volume& volume, ValueWindow window);
 
-/// What a shader that reads the values as a storage image binds. GLSL fixes
-/// a storage image's format in its declaration, so such a shader declares an
-/// R8 and an R16 binding and a specialization constant picks the one it loads
-/// (sample_common.h's cwStorageFetch); both need an image. The stand-ins are
-/// 1^3 images of those formats, or RGBA8 (never read) where the values are no
-/// storage images (DeviceFormats::storageValues).
+/// The storage images of a shader built with CW_STORAGE_PATHS. GLSL fixes a
+/// storage image's format in its declaration, so such a shader declares an
+/// R8 and an R16 binding for the values and a specialization constant picks
+/// the one it loads (sample_common.h's cwStorageFetch); each binding needs an
+/// image, and so does the gradients' (sample_common.h's gradientImage). The
+/// stand-ins are 1^3 images of those formats (RGBA8, never read, where the
+/// device has no R8 and R16 storage images), made on first use: a device
+/// whose tuning takes no storage paths makes none.
 class ValueStorageBindings {
 public:
-    explicit ValueStorageBindings(const gpu::Context& ctx);
+    explicit ValueStorageBindings(const gpu::Context& ctx) : m_ctx(ctx) {}
     /// The views for the R8 and the R16 binding: `values` (from uploadVolume)
-    /// in the one of its format where the device can, a stand-in in the other.
-    std::array<VkImageView, 2> views(const gpu::Image& values) const;
-    /// cwStorageFetch's value for `values`: 1 for R8, 2 for R16.
+    /// in the one of its format where it is a storage image, a stand-in in
+    /// the other (in both where it is not).
+    std::array<VkImageView, 2> views(const gpu::Image& values);
+    /// The view for the gradients' storage binding: `gradients` where they
+    /// rest in GENERAL, else a stand-in.
+    VkImageView gradientView(const gpu::Image& gradients);
+    /// cwStorageFetch's value for `values`: 1 for R8, 2 for R16, 0 where it
+    /// is no storage image (the shader must sample it).
     static int fetchOf(const gpu::Image& values) {
+        if (!(values.usage & VK_IMAGE_USAGE_STORAGE_BIT)) return 0;
         return values.format == VK_FORMAT_R8_UNORM ? 1 : 2;
     }
+    /// How many stand-ins this object has made (tests).
+    int standIns() const;
 
 private:
+    const gpu::Image& standIn(int which);
     const gpu::Context& m_ctx;
-    gpu::Image m_standIns[2];
+    gpu::Image m_standIns[3]; ///< R8, R16, RGBA8_SNORM
 };
 
 /// A 0/1 mask (one byte per voxel, x fastest) as an R8_UNORM 3D image that
 /// samples 0 or 1, like uploadVolume over the window [0, 1] at an eighth of
-/// the work: no conversion, half the bytes. Sampled only, in kValuesLayout.
+/// the work: no conversion, half the bytes. Sampled only, resting in
+/// SHADER_READ_ONLY_OPTIMAL.
 gpu::Image uploadMask(const gpu::Context& ctx, const std::vector<uint8_t>& mask, glm::ivec3 dims);
 /// The same from texels that `write` makes (0 outside, 255 inside), so the
 /// mask need not be whole on the host.

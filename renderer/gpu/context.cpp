@@ -100,14 +100,9 @@ Context::Context(const ContextOptions& options)
         m_physicalDevice = choice.device;
         m_queueFamily = choice.queueFamily;
         m_formats = choice.formats;
-        VkPhysicalDeviceSubgroupProperties subgroup{
-            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-        VkPhysicalDeviceProperties2 properties2{
-            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup, {}};
-        vkGetPhysicalDeviceProperties2(m_physicalDevice, &properties2);
-        m_properties = properties2.properties;
-        m_computeBallots = (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
-                           (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT);
+        vkGetPhysicalDeviceProperties(m_physicalDevice, &m_properties);
+        m_computeBallots = hasComputeBallots(m_physicalDevice);
+        m_tuning = options.tuning ? supported(*options.tuning) : profileOf(m_physicalDevice);
         vkGetPhysicalDeviceMemoryProperties(m_physicalDevice, &m_memory);
         m_memoryLimits = queryMemoryLimits(m_physicalDevice, options.memoryBudget);
 
@@ -240,6 +235,16 @@ std::size_t Context::validationMessageCount() const {
     return m_messages.size();
 }
 
+std::vector<SetLayoutRecord> Context::setLayouts() const {
+    std::lock_guard lock(m_messagesMutex);
+    return m_setLayouts;
+}
+
+void Context::recordSetLayout(SetLayoutRecord record) const {
+    std::lock_guard lock(m_messagesMutex);
+    m_setLayouts.push_back(std::move(record));
+}
+
 std::vector<std::string> listDevices() {
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     VkInstance instance = createInstance(false, nullptr, &messenger);
@@ -255,7 +260,8 @@ std::vector<std::string> listDevices() {
         names.push_back(describeDevice(d) + "\n  maxImageDimension3D " +
                         std::to_string(properties.limits.maxImageDimension3D) +
                         ", maxMemoryAllocationSize " + formatBytes(memory.maxAllocation) +
-                        ", device-local heap " + formatBytes(memory.heap));
+                        ", device-local heap " + formatBytes(memory.heap) + "\n  tuning " +
+                        tuningName(profileOf(d)));
     }
     vkDestroyInstance(instance, nullptr);
     return names;

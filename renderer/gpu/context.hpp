@@ -11,6 +11,7 @@
 // Validation: with the Khronos validation layer on (ContextOptions::validation,
 // or CUTAWAY_VALIDATION=1 in the environment), every warning or error message
 // is printed to stderr and counted; tests fail when the count is not zero.
+#include "gpu/device_tuning.hpp"
 #include "gpu/handle.hpp"
 #include "gpu/memory.hpp"
 
@@ -19,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
@@ -29,6 +31,16 @@ struct ContextOptions {
     bool validation = false;       ///< also switched on by CUTAWAY_VALIDATION=1
     std::string deviceName;        ///< substring of the device name; empty = best device
     VkDeviceSize memoryBudget = 0; ///< bytes cutaway may hold at once; 0 = the device-local heap
+    /// The paths to take on this device instead of its own profile (tests:
+    /// the GPU profile on lavapipe), less what the device cannot run.
+    std::optional<DeviceTuning> tuning;
+};
+
+/// A descriptor set layout as it was made (gpu::createSetLayout), for tests
+/// that check what a device's pipelines bind.
+struct SetLayoutRecord {
+    std::string name;
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
 };
 
 /// What the device supports among the formats cutaway uses.
@@ -57,6 +69,13 @@ public:
     std::string deviceName() const { return m_properties.deviceName; }
     /// Compute shaders can use subgroup ballots (GL_KHR_shader_subgroup_ballot).
     bool computeBallots() const { return m_computeBallots; }
+    /// The paths this device takes (gpu/device_tuning.hpp): its profile, or
+    /// ContextOptions::tuning.
+    const DeviceTuning& tuning() const { return m_tuning; }
+    /// `wanted` without what this device cannot run.
+    DeviceTuning supported(const DeviceTuning& wanted) const {
+        return supportedTuning(wanted, m_formats.storageValues, m_computeBallots);
+    }
     bool validationEnabled() const { return m_validation; }
 
     /// Index of a memory type allowed by `typeBits` that has `required`, one
@@ -85,6 +104,11 @@ public:
     std::vector<std::string> validationMessages() const;
     std::size_t validationMessageCount() const;
 
+    /// Every descriptor set layout made so far on this device, by name.
+    std::vector<SetLayoutRecord> setLayouts() const;
+    /// Called by gpu::createSetLayout.
+    void recordSetLayout(SetLayoutRecord record) const;
+
     /// Called by the debug messenger; public only for the C callback.
     void onValidationMessage(const std::string& message);
 
@@ -97,6 +121,7 @@ private:
     VkPhysicalDevice m_physicalDevice = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties m_properties{};
     bool m_computeBallots = false;
+    DeviceTuning m_tuning;
     VkPhysicalDeviceMemoryProperties m_memory{};
     MemoryLimits m_memoryLimits;
     mutable std::atomic<VkDeviceSize> m_memoryInUse{0};
@@ -108,6 +133,7 @@ private:
     CommandPoolHandle m_commandPool;
     mutable std::mutex m_messagesMutex;
     std::vector<std::string> m_messages;
+    mutable std::vector<SetLayoutRecord> m_setLayouts; ///< guarded by m_messagesMutex
 };
 
 /// Names and types of the Vulkan devices present, each with its limits on

@@ -54,6 +54,13 @@ bool hasFeatures(VkPhysicalDevice device, VkFormat format, VkImageTiling tiling,
     return (have & wanted) == wanted;
 }
 
+// R8_UNORM and R16_UNORM can be storage images (DeviceFormats::storageValues).
+bool storageValueFormats(VkPhysicalDevice device) {
+    const auto opt = VK_IMAGE_TILING_OPTIMAL;
+    return hasFeatures(device, VK_FORMAT_R8_UNORM, opt, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
+           hasFeatures(device, VK_FORMAT_R16_UNORM, opt, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT);
+}
+
 // Returns an empty string when the device fits, else the reason it does not.
 std::string check(VkPhysicalDevice device, DeviceChoice& choice) {
     VkPhysicalDeviceProperties props;
@@ -93,9 +100,7 @@ std::string check(VkPhysicalDevice device, DeviceChoice& choice) {
     if (!hasFeatures(device, VK_FORMAT_R16G16B16A16_SFLOAT, opt, sampledLinear))
         return "cannot filter RGBA16F transfer-function textures";
 
-    choice.formats.storageValues =
-        hasFeatures(device, VK_FORMAT_R8_UNORM, opt, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) &&
-        hasFeatures(device, VK_FORMAT_R16_UNORM, opt, VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT);
+    choice.formats.storageValues = storageValueFormats(device);
 
     const VkFormatFeatureFlags blendTarget = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT |
                                              VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT |
@@ -158,6 +163,22 @@ DeviceChoice chooseDevice(VkInstance instance, const std::string& wanted) {
     if (best.device == VK_NULL_HANDLE)
         throw RuntimeError("no Vulkan device fits cutaway's needs; devices found:" + report);
     return best;
+}
+
+bool hasComputeBallots(VkPhysicalDevice device) {
+    VkPhysicalDeviceSubgroupProperties subgroup{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &subgroup, {}};
+    vkGetPhysicalDeviceProperties2(device, &properties);
+    return (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
+           (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT);
+}
+
+DeviceTuning profileOf(VkPhysicalDevice device) {
+    VkPhysicalDeviceProperties properties;
+    vkGetPhysicalDeviceProperties(device, &properties);
+    return tuningFor(properties.deviceType, storageValueFormats(device), hasComputeBallots(device));
 }
 
 } // namespace cutaway::gpu

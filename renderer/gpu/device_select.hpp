@@ -21,4 +21,10 @@ DeviceChoice chooseDevice(VkInstance instance, const std::string& wanted);
 /// "NAME (TYPE, Vulkan X.Y)"
 std::string describeDevice(VkPhysicalDevice device);
 
+/// Whether compute shaders on `device` have subgroup ballots.
+bool hasComputeBallots(VkPhysicalDevice device);
+
+/// The paths `device` takes by its type and what it can run (device_tuning.hpp).
+DeviceTuning profileOf(VkPhysicalDevice device);
+
 } // namespace cutaway::gpu

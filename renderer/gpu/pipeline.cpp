@@ -15,8 +15,10 @@ ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words,
     return ShaderModuleHandle(ctx.device(), module);
 }
 
-DescriptorSetLayoutHandle
-createSetLayout(const Context& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings) {
+DescriptorSetLayoutHandle createSetLayout(const Context& ctx,
+                                          const std::vector<VkDescriptorSetLayoutBinding>& bindings,
+                                          const char* name) {
+    ctx.recordSetLayout({name, bindings});
     VkDescriptorSetLayoutCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     info.bindingCount = static_cast<uint32_t>(bindings.size());
     info.pBindings = bindings.data();
@@ -89,10 +91,13 @@ void computeIntoImage(const Context& ctx, const Image& target, VkPipeline pipeli
 DescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorSetLayout layout,
                                     const std::vector<VkDescriptorPoolSize>& sizes) {
     DescriptorSet result;
+    std::vector<VkDescriptorPoolSize> needed; // a type a layout lacks is asked for 0 times
+    for (const VkDescriptorPoolSize& size : sizes)
+        if (size.descriptorCount > 0) needed.push_back(size);
     VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = static_cast<uint32_t>(sizes.size());
-    poolInfo.pPoolSizes = sizes.data();
+    poolInfo.poolSizeCount = static_cast<uint32_t>(needed.size());
+    poolInfo.pPoolSizes = needed.data();
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VK_CHECK(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
     result.pool = DescriptorPoolHandle(ctx.device(), pool);

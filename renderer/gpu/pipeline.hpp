@@ -18,8 +18,24 @@ namespace cutaway::gpu {
 /// `words` points at SPIR-V as generated into NAME_STAGE.spv.h.
 ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words, std::size_t bytes);
 
-DescriptorSetLayoutHandle
-createSetLayout(const Context& ctx, const std::vector<VkDescriptorSetLayoutBinding>& bindings);
+/// Embedded SPIR-V (a NAME_STAGE_spv array), to pick among a shader's flavours.
+struct Spirv {
+    const uint32_t* words;
+    std::size_t bytes;
+};
+template <std::size_t N>
+Spirv spirv(const uint32_t (&words)[N]) {
+    return {words, sizeof words};
+}
+inline ShaderModuleHandle createShaderModule(const Context& ctx, Spirv code) {
+    return createShaderModule(ctx, code.words, code.bytes);
+}
+
+/// `name` says whose set it is ("slicing frame", "operator"): the Context
+/// keeps a record of each (Context::setLayouts).
+DescriptorSetLayoutHandle createSetLayout(const Context& ctx,
+                                          const std::vector<VkDescriptorSetLayoutBinding>& bindings,
+                                          const char* name);
 
 PipelineLayoutHandle createPipelineLayout(const Context& ctx, VkDescriptorSetLayout setLayout,
                                           uint32_t pushConstantBytes,

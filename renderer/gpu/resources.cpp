@@ -70,6 +70,7 @@ Image makeImage(const Context& ctx, VkImageType type, VkFormat format, VkExtent3
     img.extent = extent;
     img.aspect = aspect;
     img.layers = layers;
+    img.usage = usage;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = type;
     info.format = format;
@@ -220,7 +221,8 @@ Image createSampledVolume(const Context& ctx, VkFormat format, VkExtent3D extent
                           VkPipelineStageFlags2 readers) {
     Image image = createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    uploadImage(ctx, image, texelBytes, write, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, readers);
+    image.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    uploadImage(ctx, image, texelBytes, write, image.layout, readers);
     return image;
 }
 
@@ -234,6 +236,7 @@ Image createFilledVolume(const Context& ctx, VkFormat format, VkExtent3D extent,
     Image image =
         createImage(ctx, VK_IMAGE_TYPE_3D, format, extent, usage | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     uploadImage(ctx, image, data, bytes, layout, readers);
+    image.layout = layout;
     return image;
 }
 

@@ -4,6 +4,7 @@
 // nothing), uploads through a staging buffer, and layout transitions.
 #include "gpu/context.hpp"
 #include "gpu/handle.hpp"
+#include "shared/tuning.h"
 
 #include <cstddef>
 #include <functional>
@@ -40,6 +41,10 @@ struct Image {
     VkExtent3D extent{0, 0, 0};
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     uint32_t layers = 1; ///< array layers (2D arrays); transfers and barriers cover them all
+    VkImageUsageFlags usage = 0;
+    /// The layout a texture rests in between passes, where its maker leaves
+    /// it in one (uploads, bakes); descriptors that read it name this.
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
 };
 
 /// A device-local image of type 2D (extent.depth == 1) or 3D, with a view.
@@ -68,7 +73,7 @@ void barrierTransferToHost(VkCommandBuffer cmd);
 using TexelWriter = std::function<void(std::size_t first, std::size_t count, std::byte* dst)>;
 
 /// The most bytes an upload stages at once (at least one z-slice or layer).
-inline constexpr std::size_t kStagingBytes = std::size_t(16) << 20;
+inline constexpr std::size_t kStagingBytes = std::size_t(shader::kStagingMiB) << 20;
 
 /// Fills the whole image with texels of `texelBytes` bytes that `write` makes,
 /// a few z-slices (or layers) at a time through one staging buffer of at most

@@ -5,7 +5,7 @@
 #include "job/render_job.hpp"
 #include "job/scene_check.hpp"
 #include "operators/operator_geometry.hpp"
-#include "render/label_classes.hpp"
+#include "render/classify/label_classes.hpp"
 #include "volume/otsu.hpp"
 #include "volume/segmentation.hpp"
 

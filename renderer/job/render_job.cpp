@@ -3,7 +3,7 @@
 #include "core/error.hpp"
 #include "job/scene_check.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 #include "volume/phantom.hpp"
 
 #include <algorithm>

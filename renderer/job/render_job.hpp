@@ -8,7 +8,7 @@
 #include "io/image.hpp"
 #include "operators/deformed_volume.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
@@ -101,7 +101,7 @@ class FrameRenderer {
 public:
     explicit FrameRenderer(const gpu::Context& ctx);
     Image render(const Scene& scene);
-    /// See SliceRenderer::setCensus.
+    /// See VolumeRenderer::setCensus.
     void setCensus(bool on) { m_renderer.setCensus(on); }
     int uploads() const { return m_uploads; } ///< volumes loaded, uploaded and baked so far
     /// What the renders since the last call derived, one line each (e.g. the
@@ -116,7 +116,7 @@ private:
 
     const gpu::Context& m_ctx;
     bake::GradientBaker m_baker;
-    render::SliceRenderer m_renderer;
+    render::VolumeRenderer m_renderer;
     std::unique_ptr<render::GpuVolume> m_volume;
     std::string m_volumeKey;
     int m_uploads = 0;

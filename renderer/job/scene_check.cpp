@@ -4,7 +4,7 @@
 #include "job/render_job.hpp"
 #include "mesh/mesh.hpp"
 #include "operators/operator_geometry.hpp"
-#include "render/label_classes.hpp"
+#include "render/classify/label_classes.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -51,7 +51,7 @@ std::string segmentKey(const Alignment& a) {
 }
 
 // Refuses a segment-aligned operator whose segment holds no voxel of the
-// scan, as its bake would (render/label_classes.hpp), a slab at a time.
+// scan, as its bake would (render/classify/label_classes.hpp), a slab at a time.
 void checkSegmentNotEmpty(const OperatorSpec& op, const Volume& scan, const Volume* labels) {
     render::SegmentIndicator segment(op, scan, labels);
     const std::size_t total = scan.voxelCount();

@@ -15,6 +15,7 @@ namespace cutaway::operators {
 struct LocalBox {
     glm::dvec3 lo{-1.0};
     glm::dvec3 hi{1.0};
+    bool operator==(const LocalBox&) const = default;
 };
 
 /// V_T united with the bounds of T_F over V_T (sampled densely on the box and

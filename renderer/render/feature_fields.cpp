@@ -1,7 +1,7 @@
 #include "render/feature_fields.hpp"
 
 #include "core/error.hpp"
-#include "render/label_classes.hpp"
+#include "render/classify/label_classes.hpp"
 #include "volume/otsu.hpp"
 #include "volume/segmentation.hpp"
 
@@ -24,11 +24,14 @@ std::string number(double v) {
 
 } // namespace
 
-FeatureFields::FeatureFields(const gpu::Context& ctx)
+FeatureFields::FeatureFields(const gpu::Context& ctx, bool storageImages)
     : m_ctx(ctx), m_baker(ctx), m_rangeBaker(ctx) {
-    m_none = gpu::createImage(ctx, VK_IMAGE_TYPE_3D, bake::kFeatureFieldFormat, {1, 1, 1},
-                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_STORAGE_BIT |
-                                  VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    // Axis alignment's field, bound as a storage image too where the shaders
+    // take the storage paths.
+    m_none =
+        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, bake::kFeatureFieldFormat, {1, 1, 1},
+                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+                             (storageImages ? VK_IMAGE_USAGE_STORAGE_BIT : VkImageUsageFlags(0)));
     const uint16_t zero = 0; // one half float
     gpu::uploadImage(ctx, m_none, &zero, sizeof zero, bake::kFeatureLayout,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |

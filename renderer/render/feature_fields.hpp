@@ -18,7 +18,11 @@ namespace cutaway::render {
 
 class FeatureFields {
 public:
-    explicit FeatureFields(const gpu::Context& ctx);
+    /// `storageImages`: the fields are also read as storage images
+    /// (OperatorStack); by default as the device's tuning says.
+    FeatureFields(const gpu::Context& ctx, bool storageImages);
+    explicit FeatureFields(const gpu::Context& ctx)
+        : FeatureFields(ctx, ctx.tuning().storageImages()) {}
 
     /// The field `spec`'s alignment reads: R16F over the volume's grid
     /// (surface: DT in mm; segment: M, which the operator's shader reads

@@ -1,6 +1,7 @@
 #include "render/gpu_operators.hpp"
 
-#include "render/operator_regions.hpp"
+#include "render/skipping/operator_regions.hpp"
+#include "shared/bindings.h"
 #include "shared/feature.h"
 #include "shared/operator_frame.h"
 
@@ -58,10 +59,22 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
 
 } // namespace
 
-OperatorStack::OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setLayout,
-                             VkSampler sampler)
-    : m_ctx(ctx), m_setLayout(setLayout), m_sampler(sampler), m_baker(ctx), m_regionBaker(ctx),
-      m_features(ctx) {}
+OperatorStack::OperatorStack(const gpu::Context& ctx, VkSampler sampler, bool storageImages)
+    : m_ctx(ctx), m_storageImages(storageImages), m_sampler(sampler), m_baker(ctx),
+      m_regionBaker(ctx), m_features(ctx, storageImages) {
+    // Read by the operator's slicing shader and by the ray caster.
+    const auto stages = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
+    const auto sampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    std::vector<VkDescriptorSetLayoutBinding> bindings{
+        {CW_BIND_OP_UNIFORMS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stages, nullptr},
+        {CW_BIND_OP_MAP, sampled, 1, stages, nullptr},
+        {CW_BIND_OP_FEATURE, sampled, 1, stages, nullptr},
+        {CW_BIND_OP_DERIVATIVES, sampled, 1, stages, nullptr}};
+    if (storageImages)
+        bindings.push_back(
+            {CW_BIND_OP_FEATURE_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stages, nullptr});
+    m_setLayout = gpu::createSetLayout(ctx, bindings, "operator");
+}
 
 void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolume& volume) {
     // Deformed bounds depend only on the parameters: keep them while the map is kept.
@@ -85,12 +98,14 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
             op->uniforms =
                 gpu::createBuffer(m_ctx, sizeof(shader::OperatorUniforms),
                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, gpu::HostAccess::Write);
-            op->set = gpu::allocateDescriptorSet(m_ctx, m_setLayout,
-                                                 {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                                  {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
-                                                  {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}});
-            gpu::writeBufferDescriptor(m_ctx, op->set.set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                       op->uniforms.buffer.get(), sizeof(shader::OperatorUniforms));
+            op->set = gpu::allocateDescriptorSet(
+                m_ctx, m_setLayout.get(),
+                {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                 {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
+                 {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, m_storageImages ? 1u : 0u}});
+            gpu::writeBufferDescriptor(m_ctx, op->set.set, CW_BIND_OP_UNIFORMS,
+                                       VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, op->uniforms.buffer.get(),
+                                       sizeof(shader::OperatorUniforms));
         }
         op->box = boxes[i];
         if (rebake) {
@@ -102,12 +117,13 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
                              glm::vec3(local.lo), glm::vec3(local.hi), spec.resolution);
             op->map = std::move(baked.map);
             op->derivatives = std::move(baked.derivatives);
-            gpu::writeImageDescriptor(m_ctx, op->set.set, 1,
+            gpu::writeImageDescriptor(m_ctx, op->set.set, CW_BIND_OP_MAP,
                                       VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, op->map.view.get(),
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
-            gpu::writeImageDescriptor(
-                m_ctx, op->set.set, 3, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                op->derivatives.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
+            gpu::writeImageDescriptor(m_ctx, op->set.set, CW_BIND_OP_DERIVATIVES,
+                                      VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                      op->derivatives.view.get(),
+                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, m_sampler);
             ++m_bakes;
         }
         std::uint64_t fieldId = 0;
@@ -130,12 +146,15 @@ void OperatorStack::update(const std::vector<OperatorSpec>& specs, const GpuVolu
         } else {
             op->region = {};
         }
-        gpu::writeImageDescriptor(m_ctx, op->set.set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                  feature->view.get(), featureLayout, m_sampler);
+        gpu::writeImageDescriptor(m_ctx, op->set.set, CW_BIND_OP_FEATURE,
+                                  VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, feature->view.get(),
+                                  featureLayout, m_sampler);
         // The field on the volume's grid again, for the shaders that load its
         // texels (surface alignment on CPU devices; operator_sample.h).
-        gpu::writeImageDescriptor(m_ctx, op->set.set, 4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
-                                  field.view.get(), bake::kFeatureLayout);
+        if (m_storageImages)
+            gpu::writeImageDescriptor(m_ctx, op->set.set, CW_BIND_OP_FEATURE_IMAGE,
+                                      VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, field.view.get(),
+                                      bake::kFeatureLayout);
         op->spec = spec;
         const shader::OperatorUniforms u =
             uniformsOf(spec, op->box, i, volume, op->region, op->regionVoxels);

@@ -40,7 +40,13 @@ struct GpuOperator {
 
 class OperatorStack {
 public:
-    OperatorStack(const gpu::Context& ctx, VkDescriptorSetLayout setLayout, VkSampler sampler);
+    /// `storageImages`: the shaders that read the sets take the storage paths
+    /// (gpu::DeviceTuning::storageImages), so each set also holds the feature
+    /// field as a storage image.
+    OperatorStack(const gpu::Context& ctx, VkSampler sampler, bool storageImages);
+    /// The layout of each operator's set (GpuOperator::set): set 1 of the
+    /// slicing shaders, sets 1 + slot of the ray caster's.
+    VkDescriptorSetLayout setLayout() const { return m_setLayout.get(); }
 
     /// Makes the device state match `specs` on `volume`: refuses overlapping
     /// operators (InputError naming both), bakes what changed.
@@ -49,10 +55,12 @@ public:
     const std::vector<std::unique_ptr<GpuOperator>>& operators() const { return m_operators; }
     int bakes() const { return m_bakes; } ///< maps baked so far, for tests
     FeatureFields& features() { return m_features; }
+    const FeatureFields& features() const { return m_features; }
 
 private:
     const gpu::Context& m_ctx;
-    VkDescriptorSetLayout m_setLayout;
+    bool m_storageImages;
+    gpu::DescriptorSetLayoutHandle m_setLayout;
     VkSampler m_sampler;
     bake::OperatorBaker m_baker;
     bake::FeatureRegionBaker m_regionBaker;

@@ -27,8 +27,8 @@ GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& bake
     gv.window = window;
     const glm::dvec3 lo = worldLo.value_or(-0.5 * volume.extent());
     gv.box = Box{lo, lo + volume.extent()};
-    gv.values = bake::uploadVolume(ctx, volume, window);
-    gv.gradientLayout = bake::gradientLayoutFor(ctx, volume.dims);
+    gv.values = bake::uploadVolume(ctx, volume, window, baker.tuning().storageValues);
+    gv.gradientLayout = bake::gradientLayoutFor(ctx, baker.tuning(), volume.dims);
     gv.gradients = baker.bake(gv.values, volume.spacing, gv.gradientLayout);
     gv.scan = std::move(scan);
     gv.labels = std::move(labels);

@@ -17,7 +17,7 @@ namespace cutaway::render {
 
 struct GpuVolume {
     gpu::Image values;
-    gpu::Image gradients; ///< in bake::kGradientsLayout
+    gpu::Image gradients;
     bake::GradientLayout gradientLayout = bake::GradientLayout::Linear;
     glm::ivec3 dims{0};
     glm::dvec3 spacing{1.0};
@@ -36,7 +36,8 @@ struct GpuVolume {
     double smallestSpacing() const;
 };
 
-/// Uploads `volume` normalized over `window` and bakes its gradients. Its box
+/// Uploads `volume` normalized over `window` and bakes its gradients, for
+/// the paths of `baker`'s tuning (GradientBaker::tuning). Its box
 /// is centred on the world's origin unless `worldLo` places its low corner.
 /// `labels`, if any, must be on the volume's grid (see job::loadSceneLabels).
 GpuVolume prepareVolume(const gpu::Context& ctx, const bake::GradientBaker& baker,

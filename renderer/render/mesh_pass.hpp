@@ -7,7 +7,7 @@
 //      and the depth buffer the slices then use (a render pass of their own);
 //   2. the slices are depth-tested against that depth, so the volume behind a
 //      mesh is never composited, and the volume's image is composited over
-//      the meshes' image like over an opaque background (SliceRenderer).
+//      the meshes' image like over an opaque background (VolumeRenderer).
 // Drawing the meshes' colour into the volume's target after the slices would
 // need a second pass with an EQUAL depth test, and so depths invariant across
 // two pipelines, which SPIR-V tools only half support.

@@ -39,12 +39,14 @@ struct TransferPoint {
     double value = 0.0;
     glm::vec3 color{1.0f};
     float alpha = 0.0f;
+    bool operator==(const TransferPoint&) const = default;
 };
 
 /// /transfer: points sorted by strictly increasing value (at least 2).
 /// Below the first point the first point's colour applies, above the last the last's.
 struct TransferFunction {
     std::vector<TransferPoint> points;
+    bool operator==(const TransferFunction&) const = default;
 };
 
 /// /transfer/labels/N: the transfer function of the samples whose label is

@@ -45,10 +45,12 @@ bool inVolume(vec3 tc) {
 // (CPU devices) surface alignment loads its texels and filters them here, as
 // volumeAt does the values': on lavapipe a sampled R16F fetch is a call that
 // gathers its texels lane by lane.
-layout(set = 1, binding = 4, r16f) uniform readonly image3D featureImage0;
+#ifdef CW_STORAGE_PATHS
+layout(set = 1, binding = CW_BIND_OP_FEATURE_IMAGE, r16f) uniform readonly image3D featureImage0;
 #ifdef CW_RAY_OPERATORS
-layout(set = 2, binding = 4, r16f) uniform readonly image3D featureImage1;
-layout(set = 3, binding = 4, r16f) uniform readonly image3D featureImage2;
+layout(set = 2, binding = CW_BIND_OP_FEATURE_IMAGE, r16f) uniform readonly image3D featureImage1;
+layout(set = 3, binding = CW_BIND_OP_FEATURE_IMAGE, r16f) uniform readonly image3D featureImage2;
+#endif
 #endif
 
 // Whether the feature field's texels are loaded (featureTexel) instead of
@@ -59,21 +61,30 @@ bool featureLoaded(int mode) {
 
 // Slot `slot`'s feature image's size and its texel at `voxel` (within the
 // size). GLSL takes no image with a format as a parameter; each call passes
-// a constant slot, so the compiler keeps one image (as blockAt does).
+// a constant slot, so the compiler keeps one image (as blockAt does). Built
+// without CW_STORAGE_PATHS, featureLoaded is false and these are never called.
 ivec3 featureImageSize(int slot) {
+#ifdef CW_STORAGE_PATHS
 #ifdef CW_RAY_OPERATORS
     if (slot == 1) return imageSize(featureImage1);
     if (slot == 2) return imageSize(featureImage2);
 #endif
     return imageSize(featureImage0);
+#else
+    return ivec3(1);
+#endif
 }
 
 float featureTexel(int slot, ivec3 voxel) {
+#ifdef CW_STORAGE_PATHS
 #ifdef CW_RAY_OPERATORS
     if (slot == 1) return imageLoad(featureImage1, voxel).r;
     if (slot == 2) return imageLoad(featureImage2, voxel).r;
 #endif
     return imageLoad(featureImage0, voxel).r;
+#else
+    return 0.0;
+#endif
 }
 
 // The feature field at feature coordinate `at`, loaded: trilinear, clamped to

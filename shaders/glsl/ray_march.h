@@ -9,8 +9,8 @@
 // cells, and takes the gradient and lighting only at visible slabs: lavapipe
 // runs 8 rays in lock-step and pays for both sides of a branch, but a loop
 // ends when all its lanes leave it, so transparent runs are inner loops of
-// their own. Built with CW_YIELD_LANES (raycast_lanes.comp.glsl and
-// raycast_operators_lanes.comp.glsl, used on CPU devices), the lanes still
+// their own. Built with CW_YIELD_LANES (the shaders' "lanes" flavour, used
+// on CPU devices: gpu/device_tuning.hpp), the lanes still
 // in such a loop stop for a pass of shading as soon as one lane of their
 // subgroup waits at a visible slab, instead of all waiting for the last.
 //
@@ -21,7 +21,7 @@
 // splits into runs of samples: those in an operator's deformed box (the
 // operator's proxy; the boxes do not overlap) take that operator's slabs,
 // the others the untouched volume's, as slicing's stencil decides.
-// raycast_operator.comp.glsl (and its _lanes twin) defines
+// raycast_operator.comp.glsl defines
 // CW_RAY_ONE_OPERATOR too: the shader for one operator, without the loop
 // over two or three boxes. lavapipe keeps every shader's NIR, dead code and
 // all, as long as its pipeline lives; that loop's three copies of the
@@ -34,24 +34,25 @@
 #else
 #include "glsl/sample_common.h"
 #endif
+#include "shared/ray_push.h"
 #include "shared/tile_order.h"
 #include "shared/visible_runs.h"
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
-// The census (SliceRenderer::setCensus, bench --census): the target receives,
+// The census (VolumeRenderer::setCensus, bench --census): the target receives,
 // instead of colour, how many samples the ray took of each kind: x the
 // untouched volume's values fetched, y its slabs shaded, z operator points
 // resolved (Eq. 3-4), w operator slabs shaded. Off, the counting folds away.
-layout(constant_id = 9) const bool cwCensus = false;
+layout(constant_id = CW_SPEC_CENSUS) const bool cwCensus = false;
 vec4 census = vec4(0.0);
-layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D target;
+layout(set = 0, binding = CW_BIND_RAY_TARGET, rgba32f) uniform writeonly image2D target;
 // Which proxy the pixel's first visible sample came from (codes: see
 // CW_ID_BACKGROUND in sample_common.h), as slicing's operator-id attachment.
-layout(set = 0, binding = 12, r32f) uniform writeonly image2D idTarget;
+layout(set = 0, binding = CW_BIND_RAY_ID, r32f) uniform writeonly image2D idTarget;
 // The depth of the scene's opaque meshes (render/mesh_pass.hpp), drawn before
 // the rays; 1 (the far plane) where there are none. A sample counts when it
 // lies in front of them or at their depth, as slicing's depth test decides.
-layout(set = 0, binding = 14) uniform sampler2D meshDepth;
+layout(set = 0, binding = CW_BIND_RAY_MESH_DEPTH) uniform sampler2D meshDepth;
 
 // Composites slab colour `c` from proxy `code` behind `sum`; the first
 // visible one names the pixel's proxy.
@@ -59,18 +60,16 @@ void composite(vec4 c, float code, inout vec4 sum, inout float id) {
     if (id == 0.0 && c.a >= CW_ID_MIN_ALPHA) id = code;
     sum += (1.0 - sum.a) * c;
 }
-// One texel per cell of kRayCellVoxels^3 (render/ray_cells.hpp): 0 where the
+// One texel per cell of kRayCellVoxels^3 (render/skipping/ray_cells.hpp): 0 where the
 // cell is occupied; else r, and every cell within r - 1 of it (chessboard
 // distance) is empty: each sample there, and each slab up to the margin long
 // that starts there, is transparent.
-layout(set = 0, binding = 6, r8ui) uniform readonly uimage3D cellImage;
+layout(set = 0, binding = CW_BIND_RAY_CELLS, r8ui) uniform readonly uimage3D cellImage;
 // Which bins of the classification tables any layer shows, as runs
-// (VisibleValues::runs, render/occupancy.hpp; shared/visible_runs.h).
+// (VisibleValues::runs, render/skipping/occupancy.hpp; shared/visible_runs.h).
 // Transparent runs ask only that; the table is read once a slab may show.
-layout(std430, set = 0, binding = 13) readonly buffer Visible {
-    ivec4 visibleLo;
-    ivec4 visibleHi;
-    int visibleBins;
+layout(std430, set = 0, binding = CW_BIND_RAY_VISIBLE) readonly buffer Visible {
+    VisibleRuns visible;
 };
 // The runs, read at the start of main while every lane runs it: lavapipe
 // then reads each word once, where a read in the march's loops is made lane
@@ -78,18 +77,8 @@ layout(std430, set = 0, binding = 13) readonly buffer Visible {
 ivec4 runLo, runHi;
 int runBins;
 layout(push_constant) uniform Ray {
-    mat4 clipToWorld;
-    vec4 boxLo; // the occupied cells' bounds (world, mm)
-    vec4 boxHi;
-    vec4 cellsPerTexture; // xyz: cells across the texture, the last one partial;
-                          // w: the longest slab they cover (voxels along each axis)
-    uint bandStride;      // the order of the tiles' bands: shared/tile_order.h
-    uint tileOffset;      // the dispatch's first tile: x | y << 16
-    uint operatorTilesLo; // the tiles the rays of the operators' boxes cross,
-    uint operatorTilesHi; // [lo, hi) (x | y << 16), which the shader with
-                          // operators renders and the one without leaves
-}
-ray;
+    RayPush ray;
+};
 
 uvec2 unpackTile(uint packed) {
     return uvec2(packed & 0xffffu, packed >> 16);
@@ -255,9 +244,9 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
 }
 
 #ifdef CW_RAY_OPERATORS
-layout(set = 0, binding = 9, r8ui) uniform readonly uimage3D blocks0;
-layout(set = 0, binding = 10, r8ui) uniform readonly uimage3D blocks1;
-layout(set = 0, binding = 11, r8ui) uniform readonly uimage3D blocks2;
+layout(set = 0, binding = CW_BIND_RAY_BLOCKS, r8ui) uniform readonly uimage3D blocks0;
+layout(set = 0, binding = CW_BIND_RAY_BLOCKS + 1, r8ui) uniform readonly uimage3D blocks1;
+layout(set = 0, binding = CW_BIND_RAY_BLOCKS + 2, r8ui) uniform readonly uimage3D blocks2;
 // Slot `slot`'s block texel at `block` (clamped), and the blocks' size. GLSL
 // takes no image with a format as a parameter; each call passes a constant,
 // so the compiler keeps one load.
@@ -268,7 +257,7 @@ uint blockAt(int slot, ivec3 block) {
 }
 
 // How many samples from `k` on lie in the cube of empty blocks of the
-// operator around the block that p(k) is in (render/operator_regions.hpp:
+// operator around the block that p(k) is in (render/skipping/operator_regions.hpp:
 // blocks of map texels where the operator shader, reading up to a slab from
 // its point, shows nothing; each holds its chessboard distance r to the
 // nearest active block, 0 when active): 0 when that block is active. Like
@@ -348,27 +337,29 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
     }
 }
 
-layout(constant_id = 6) const int cwOperatorCount = 1; // 1..CW_RAY_MAX_OPERATORS
-layout(constant_id = 7) const int cwAlignment1 = 0;    // slot 1's CW_ALIGN_*; slot 0's is
-layout(constant_id = 8) const int cwAlignment2 = 0;    // cwAlignment
+layout(constant_id = CW_SPEC_OPERATOR_COUNT) const
+    int cwOperatorCount = 1; // 1..CW_RAY_MAX_OPERATORS
+layout(constant_id = CW_SPEC_ALIGNMENT1) const
+    int cwAlignment1 = 0; // slot 1's CW_ALIGN_*; slot 0's
+layout(constant_id = CW_SPEC_ALIGNMENT2) const int cwAlignment2 = 0; // is cwAlignment
 // The slots' uniforms, all in one buffer of set 0 (lavapipe, Mesa 22.3,
 // crashed reading a fourth uniform buffer in a compute shader), and a storage
 // buffer: from a uniform buffer, lavapipe inlined the values that steer
 // branches and compiled the shader again at every dispatch, keeping each copy
 // (about 1 MB a frame; GpuTest.RepeatedFramesCompileNothingNew).
-layout(std140, set = 0, binding = 8) readonly buffer RayOperators {
+layout(std140, set = 0, binding = CW_BIND_RAY_OPERATORS) readonly buffer RayOperators {
     OperatorUniforms ops[CW_RAY_MAX_OPERATORS];
 }
 slots;
-layout(set = 1, binding = 1) uniform sampler3D map0;
-layout(set = 1, binding = 2) uniform sampler3D feature0;
-layout(set = 1, binding = 3) uniform sampler3D derivatives0;
-layout(set = 2, binding = 1) uniform sampler3D map1;
-layout(set = 2, binding = 2) uniform sampler3D feature1;
-layout(set = 2, binding = 3) uniform sampler3D derivatives1;
-layout(set = 3, binding = 1) uniform sampler3D map2;
-layout(set = 3, binding = 2) uniform sampler3D feature2;
-layout(set = 3, binding = 3) uniform sampler3D derivatives2;
+layout(set = 1, binding = CW_BIND_OP_MAP) uniform sampler3D map0;
+layout(set = 1, binding = CW_BIND_OP_FEATURE) uniform sampler3D feature0;
+layout(set = 1, binding = CW_BIND_OP_DERIVATIVES) uniform sampler3D derivatives0;
+layout(set = 2, binding = CW_BIND_OP_MAP) uniform sampler3D map1;
+layout(set = 2, binding = CW_BIND_OP_FEATURE) uniform sampler3D feature1;
+layout(set = 2, binding = CW_BIND_OP_DERIVATIVES) uniform sampler3D derivatives1;
+layout(set = 3, binding = CW_BIND_OP_MAP) uniform sampler3D map2;
+layout(set = 3, binding = CW_BIND_OP_FEATURE) uniform sampler3D feature2;
+layout(set = 3, binding = CW_BIND_OP_DERIVATIVES) uniform sampler3D derivatives2;
 // Each slot's blocks' distances (see stepsOverEmptyBlocks).
 
 // Samples first..last of both runs `a` and `b` (first > last: none).
@@ -457,9 +448,9 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
 #endif
 
 void main() {
-    runLo = visibleLo;
-    runHi = visibleHi;
-    runBins = visibleBins;
+    runLo = visible.lo;
+    runHi = visible.hi;
+    runBins = visible.bins;
     // Workgroups take bands of tiles in an order that spreads each core's
     // share over the image, and each 8 invocations a 4x2 block of pixels
     // (shared/tile_order.h).

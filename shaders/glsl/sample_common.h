@@ -4,27 +4,36 @@
 #ifndef CUTAWAY_SAMPLE_COMMON_H
 #define CUTAWAY_SAMPLE_COMMON_H
 
+#include "shared/bindings.h"
+
 // What a frame fixes, as specialization constants (see SliceVariant in
 // render/slice_pipeline.hpp and render/raycaster.hpp): the compiler drops the paths a frame does
 // not take. On lavapipe a branch on a uniform still costs both sides, so these halve the cost of a
 // fragment.
-layout(constant_id = 0) const bool cwPreintegrated = false;
-layout(constant_id = 1) const bool cwByLabel = false;
-layout(constant_id = 2) const bool cwShading = true;
-layout(constant_id = 3) const int cwLightCount = 0;
-layout(constant_id = 4) const int cwAlignment = 0; // operator proxies: CW_ALIGN_*
+layout(constant_id = CW_SPEC_PREINTEGRATED) const bool cwPreintegrated = false;
+layout(constant_id = CW_SPEC_BY_LABEL) const bool cwByLabel = false;
+layout(constant_id = CW_SPEC_SHADING) const bool cwShading = true;
+layout(constant_id = CW_SPEC_LIGHT_COUNT) const int cwLightCount = 0;
+layout(constant_id = CW_SPEC_ALIGNMENT) const int cwAlignment = 0; // operator proxies: CW_ALIGN_*
+#ifdef CW_STORAGE_PATHS
+// The CPU-device paths (gpu/device_tuning.hpp); shaders built without
+// CW_STORAGE_PATHS declare none of their bindings.
 // The volume's values read as a storage image and filtered here (volumeAt)
 // instead of sampled: on lavapipe a sampled fetch of an 8- or 16-bit texture
 // is a call that gathers its 64 texels one by one, imageLoad an inline load
-// (docs/performance.md, "Where a frame goes in lavapipe's code"). 0: sampled;
-// 1: the R8 storage image volumeImage8; 2: the R16 one, volumeImage16.
-layout(constant_id = 5) const int cwStorageFetch = 0;
-// The gradients in the bricked layout (bake::GradientLayout::Bricked, CPU
-// devices), read as the storage image gradientImage and filtered here
-// (gradientAt); else sampled from gradientTex.
-layout(constant_id = 10) const bool cwBrickedGradients = false;
+// (docs/design/cpu-device-paths.md). 0: sampled; 1: the R8 storage image
+// volumeImage8; 2: the R16 one, volumeImage16.
+layout(constant_id = CW_SPEC_STORAGE_FETCH) const int cwStorageFetch = 0;
+// The gradients in the bricked layout (bake::GradientLayout::Bricked), read
+// as the storage image gradientImage and filtered here (gradientAt); else
+// sampled from gradientTex.
+layout(constant_id = CW_SPEC_BRICKED_GRADIENTS) const bool cwBrickedGradients = false;
+#else
+const int cwStorageFetch = 0;
+const bool cwBrickedGradients = false;
+#endif
 // The shininess when it is a whole number (scene range: up to 512), else 0.
-layout(constant_id = 11) const int cwWholeShininess = 0;
+layout(constant_id = CW_SPEC_WHOLE_SHININESS) const int cwWholeShininess = 0;
 #define CW_SHADING_ON(u) cwShading
 #define CW_LIGHT_COUNT(u) cwLightCount
 
@@ -47,22 +56,25 @@ float specularPower(float x, float n) {
 #include "shared/gradient.h"
 #include "shared/shading.h"
 
-layout(std140, set = 0, binding = 0) uniform Frame {
+layout(std140, set = 0, binding = CW_BIND_FRAME) uniform Frame {
     FrameUniforms u;
 };
-layout(set = 0, binding = 1) uniform sampler3D volumeTex;
-layout(set = 0, binding = 2) uniform sampler3D gradientTex;
+layout(set = 0, binding = CW_BIND_VALUES) uniform sampler3D volumeTex;
+layout(set = 0, binding = CW_BIND_GRADIENTS) uniform sampler3D gradientTex;
 // One classification table per layer: layer 0 is /transfer, layer i + 1
 // /transfer/labels/i. classTex holds each voxel's layer (classification by
 // label; a 1^3 texture of 0 without labels, and u.flags.w = 0).
-layout(set = 0, binding = 3) uniform sampler2DArray transferTex;
-layout(set = 0, binding = 4) uniform usampler3D classTex;
+layout(set = 0, binding = CW_BIND_TRANSFER) uniform sampler2DArray transferTex;
+layout(set = 0, binding = CW_BIND_CLASSES) uniform usampler3D classTex;
+#ifdef CW_STORAGE_PATHS
 // The value texture again, as a storage image of its format (see
 // cwStorageFetch); a 1^3 stand-in in the binding of the other format.
-layout(set = 0, binding = 15, r8) uniform readonly image3D volumeImage8;
-layout(set = 0, binding = 16, r16) uniform readonly image3D volumeImage16;
+layout(set = 0, binding = CW_BIND_VALUES_R8, r8) uniform readonly image3D volumeImage8;
+layout(set = 0, binding = CW_BIND_VALUES_R16, r16) uniform readonly image3D volumeImage16;
 // The gradients again, as a storage image (see cwBrickedGradients).
-layout(set = 0, binding = 17, rgba8_snorm) uniform readonly image3D gradientImage;
+layout(set = 0, binding = CW_BIND_GRADIENT_IMAGE,
+       rgba8_snorm) uniform readonly image3D gradientImage;
+#endif
 
 // The operator-id codes of the proxy a pixel's first visible sample came
 // from: 0 nothing visible, 2 the untouched volume, 3 + i operator i. A
@@ -77,7 +89,20 @@ vec3 toTexture(vec3 world) {
 // The value texel at voxel p of the storage image cwStorageFetch names (the
 // constant folds the choice away).
 float valueTexel(ivec3 p) {
+#ifdef CW_STORAGE_PATHS
     return cwStorageFetch == 1 ? imageLoad(volumeImage8, p).r : imageLoad(volumeImage16, p).r;
+#else
+    return 0.0; // never called: cwStorageFetch is 0
+#endif
+}
+
+// The size of the storage image cwStorageFetch names.
+ivec3 valueImageSize() {
+#ifdef CW_STORAGE_PATHS
+    return cwStorageFetch == 1 ? imageSize(volumeImage8) : imageSize(volumeImage16);
+#else
+    return ivec3(1);
+#endif
 }
 
 // The texels a trilinear, clamped-to-edge sample at texture coordinate tc of
@@ -111,8 +136,7 @@ float weighTexels(vec3 f, vec4 near, vec4 far) {
 // precision (lavapipe filters 8-bit textures with 8-bit weights).
 float volumeAt(vec3 tc) {
     if (cwStorageFetch == 0) return textureLod(volumeTex, tc, 0.0).r;
-    Trilinear t =
-        trilinearAt(tc, cwStorageFetch == 1 ? imageSize(volumeImage8) : imageSize(volumeImage16));
+    Trilinear t = trilinearAt(tc, valueImageSize());
     ivec3 lo = t.lo, hi = t.hi;
     vec4 near = vec4(valueTexel(lo), valueTexel(ivec3(hi.x, lo.yz)),
                      valueTexel(ivec3(lo.x, hi.y, lo.z)), valueTexel(ivec3(hi.xy, lo.z)));
@@ -122,7 +146,11 @@ float volumeAt(vec3 tc) {
 }
 
 vec4 gradientTexel(ivec3 voxel) {
+#ifdef CW_STORAGE_PATHS
     return imageLoad(gradientImage, gradientBrickTexel(voxel));
+#else
+    return vec4(0.0); // never called: cwBrickedGradients is false
+#endif
 }
 
 // The baked gradient at texture coordinate tc (shared/gradient.h), filtered
@@ -130,7 +158,7 @@ vec4 gradientTexel(ivec3 voxel) {
 // weighted here: on lavapipe a sampled fetch is a call that gathers them
 // from the grid's rows and slices, about 4 cache lines a sample, where the
 // bricked texels share about 3, and the next samples' mostly the same
-// (docs/performance.md, "Gradients in bricks").
+// (docs/design/cpu-device-paths.md).
 vec4 gradientAt(vec3 tc) {
     if (!cwBrickedGradients) return textureLod(gradientTex, tc, 0.0);
     Trilinear t = trilinearAt(tc, textureSize(volumeTex, 0)); // the grid, not the bricks

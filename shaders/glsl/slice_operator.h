@@ -7,12 +7,12 @@
 #include "glsl/slice_common.h"
 
 layout(location = 0) in vec3 worldPos;
-layout(std140, set = 1, binding = 0) uniform Operator {
+layout(std140, set = 1, binding = CW_BIND_OP_UNIFORMS) uniform Operator {
     OperatorUniforms op;
 };
-layout(set = 1, binding = 1) uniform sampler3D operatorMap;
-layout(set = 1, binding = 2) uniform sampler3D featureTex;
-layout(set = 1, binding = 3) uniform sampler3D operatorDerivatives;
+layout(set = 1, binding = CW_BIND_OP_MAP) uniform sampler3D operatorMap;
+layout(set = 1, binding = CW_BIND_OP_FEATURE) uniform sampler3D featureTex;
+layout(set = 1, binding = CW_BIND_OP_DERIVATIVES) uniform sampler3D operatorDerivatives;
 
 void main() {
     vec3 toEye = toEyeFrom(worldPos);

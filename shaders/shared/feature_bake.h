@@ -39,6 +39,22 @@ const float kHalfMax = 65504.0f;
 const int kBlurMaxRadius = 32;
 
 // Push constants of every feature bake pass (64 bytes, std430 layout).
+// The feature bakes' set 0 (bake/feature_bake.cpp): the source texture and
+// the three r16f storage images the passes ping-pong between.
+#define CW_FEATURE_BIND_SOURCE 0 // sampler3D: the values or the object mask
+#define CW_FEATURE_BIND_SRC 1    // r16f storage image: a pass's input
+#define CW_FEATURE_BIND_DST 2    // r16f storage image: a pass's output
+#define CW_FEATURE_BIND_OUT 3    // r16f storage image: the finished field
+// mask_blur.comp.glsl's window (voxels each side).
+#define CW_FEATURE_SPEC_BLUR_WINDOW 0
+// The region bake's set 0 (bake/feature_region.cpp).
+#define CW_REGION_BIND_VALUES 0 // sampler3D: the values
+#define CW_REGION_BIND_MASK 1   // sampler3D: M over the volume's grid
+#define CW_REGION_BIND_OUT 2    // rg16f storage image: the region
+// The field ranges' set 0 (bake/feature_ranges.cpp).
+#define CW_RANGES_BIND_FIELD 0 // r16f storage image: the field
+#define CW_RANGES_BIND_OUT 1   // rg8i storage image: each cell's range
+
 struct FeatureBakeParams {
     ivec3 dims;      // voxels
     int axis;        // edt_envelope, mask_blur: the axis of the lines (0 x, 1 y, 2 z)
@@ -117,7 +133,7 @@ CW_FUNC float movedValue(float own, bool inside, float outsideSum, float outside
 // and one more on every side), in steps of 1 / scale rounded outward and
 // clamped to a signed byte, so a range may be wider than the field's, never
 // narrower (but where it is clamped: see fieldRangeHolds). Empty-space
-// skipping for operators reads them (render/case_occupancy.hpp).
+// skipping for operators reads them (render/skipping/case_occupancy.hpp).
 struct FieldRangeParams {
     ivec3 dims; // the field's voxels
     int cellVoxels;

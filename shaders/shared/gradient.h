@@ -11,6 +11,13 @@
 #ifndef CUTAWAY_GRADIENT_H
 #define CUTAWAY_GRADIENT_H
 
+// The gradient bake's set 0 and specialization constant (bake/gradient_bake.cpp).
+#define CW_GRADIENT_BIND_VALUES 0     // sampler3D: the values
+#define CW_GRADIENT_BIND_OUT 1        // rgba8_snorm storage image: the gradients
+#define CW_GRADIENT_BIND_VALUES_R8 2  // the values as r8 storage (CW_STORAGE_PATHS)
+#define CW_GRADIENT_BIND_VALUES_R16 3 // the values as r16 storage (CW_STORAGE_PATHS)
+#define CW_GRADIENT_SPEC_STORAGE_FETCH 0
+
 #include "shared/glsl_cpp.h"
 
 CW_NAMESPACE_BEGIN

@@ -25,10 +25,14 @@ struct OperatorUniforms {
     vec4 featureTc;    // xyz: volume texture coordinate -> the feature texture's: times xyz,
     vec4 featureTc0;   // plus featureTc0.xyz (segment alignment's texture covers a region)
     vec4 blocks;       // xyz: the map's texels across its domain / the texels per block
-                       // (render/operator_regions.hpp; the ray caster's skipping)
+                       // (render/skipping/operator_regions.hpp; the ray caster's skipping)
 };
 
 // Baking: the push constants of operator_bake.comp.
+// The operator bakes' set 0 (bake/operator_bake.cpp).
+#define CW_OPBAKE_BIND_MAP 0         // the map: rgba16f storage image, sampled by the derivatives
+#define CW_OPBAKE_BIND_DERIVATIVES 1 // rgba16f storage image: the map's derivatives
+
 struct OperatorBakeParams {
     vec4 a; // OperatorParams, unpacked (push constants cannot hold nested structs portably)
     vec4 b;

@@ -3,7 +3,7 @@
 // contiguous Nth of a dispatch's workgroups (x fastest), which it marches in order: in image
 // order one core would march the top half of the picture and the other the bottom half, and a
 // head whose skull fills one half keeps one core idle while the other finishes. So the tile rows
-// go in bands of CW_TILE_BAND, and workgroup band g takes tile band (g * stride) mod bands, with a
+// go in bands of kTileBand, and workgroup band g takes tile band (g * stride) mod bands, with a
 // stride near bands / golden ratio and coprime with their count: a permutation under which every
 // contiguous share of the workgroups is spread over the whole image. Within a band the tiles go
 // column by column, so a tile's neighbour below is marched right after it, while the volume's
@@ -13,6 +13,7 @@
 #define CUTAWAY_TILE_ORDER_H
 
 #include "shared/glsl_cpp.h"
+#include "shared/tuning.h"
 
 CW_NAMESPACE_BEGIN
 
@@ -24,10 +25,6 @@ CW_FUNC uint greatestCommonDivisor(uint a, uint b) {
     }
     return a;
 }
-
-// Tile rows per band: 2 measured 3-6 % faster than rows alone on ct_head and
-// the frog, 4 about as fast, 8 slower (docs/performance.md, "Tiles in bands").
-#define CW_TILE_BAND 2u
 
 // The whole number nearest count / golden ratio that is coprime with `count`
 // (at least 1): the host computes it once per dispatch, for the full bands.
@@ -48,27 +45,27 @@ CW_FUNC uint spreadOrder(uint position, uint count, uint stride) {
 
 // The stride that tileOf takes for a dispatch `groups` tiles high.
 CW_FUNC uint tileBandStride(uint rows) {
-    return spreadStride(rows / CW_TILE_BAND);
+    return spreadStride(rows / kTileBand);
 }
 
 // The tile, relative to the dispatch's first, that workgroup `group` of
 // `groups` renders: the full bands in the spread order, a partial band (the
-// last CW_TILE_BAND - 1 rows or fewer) last; within a band, column by column.
+// last kTileBand - 1 rows or fewer) last; within a band, column by column.
 CW_FUNC uvec2 tileOf(uvec2 group, uvec2 groups, uint stride) {
-    uint full = groups.y / CW_TILE_BAND;
-    uint position = group.y / CW_TILE_BAND;
+    uint full = groups.y / kTileBand;
+    uint position = group.y / kTileBand;
     uint band = position < full ? spreadOrder(position, full, stride) : position;
-    uint height = min(CW_TILE_BAND, groups.y - band * CW_TILE_BAND);
-    uint offset = (group.y - position * CW_TILE_BAND) * groups.x + group.x;
-    return uvec2(offset / height, band * CW_TILE_BAND + offset % height);
+    uint height = min(kTileBand, groups.y - band * kTileBand);
+    uint offset = (group.y - position * kTileBand) * groups.x + group.x;
+    return uvec2(offset / height, band * kTileBand + offset % height);
 }
 
 // The pixel of an 8x8 tile that invocation `local` (its gl_LocalInvocationID)
 // marches. lavapipe runs 8 invocations with consecutive x in lock-step: given
 // a row of 8 pixels, their rays lie up to 7 pixels apart; given a block of
 // 4x2, up to 3.2, and the lanes of a loop wait less for each other (8 % on
-// chest_ct, docs/performance.md). Each row of 8 invocations takes a 4x2 block;
-// any 32 consecutive invocations (a GPU's warp) still an 8x4 block.
+// chest_ct, docs/design/ray-caster.md#workgroups-and-tiles). Each row of 8 invocations takes a 4x2
+// block; any 32 consecutive invocations (a GPU's warp) still an 8x4 block.
 CW_FUNC uvec2 pixelInTile(uvec2 local) {
     return uvec2((local.x & 3u) + 4u * (local.y & 1u), (local.y & 6u) + (local.x >> 2u));
 }

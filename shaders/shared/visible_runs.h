@@ -1,6 +1,6 @@
 // Whether a sample, or a slab between two values, may show: the ray caster's
 // test at every sample it fetches, as arithmetic on at most CW_VISIBLE_RUNS
-// runs of visible bins (VisibleValues::runs, render/occupancy.hpp). A table
+// runs of visible bins (VisibleValues::runs, render/skipping/occupancy.hpp). A table
 // lookup per sample was a storage-buffer read, which lavapipe makes lane by
 // lane; the runs are read once per ray (docs/performance.md, "The visible
 // bins as runs").
@@ -12,6 +12,14 @@
 #define CW_VISIBLE_RUNS 4
 
 CW_NAMESPACE_BEGIN
+
+// The visible bins as runs [lo[i], hi[i]) (empty: lo = hi) of a table of
+// `bins` entries: the ray caster's storage buffer (std430), read once per ray.
+struct VisibleRuns {
+    ivec4 lo;
+    ivec4 hi;
+    int bins;
+};
 
 // Whether some bin that a slab from value `front` to `back` (normalized; the
 // same for a sample) reads through the table's linear filter, from
@@ -25,5 +33,11 @@ CW_FUNC bool runsMayShow(ivec4 lo, ivec4 hi, int bins, float front, float back) 
 }
 
 CW_NAMESPACE_END
+
+#ifdef __cplusplus
+static_assert(offsetof(cutaway::shader::VisibleRuns, hi) == 16);
+static_assert(offsetof(cutaway::shader::VisibleRuns, bins) == 32);
+static_assert(sizeof(cutaway::shader::VisibleRuns) == 36);
+#endif
 
 #endif

@@ -1,4 +1,4 @@
-// The ray caster's census (SliceRenderer::setCensus, bench --census): per
+// The ray caster's census (VolumeRenderer::setCensus, bench --census): per
 // pixel, how many samples its ray took of each kind. The benchmark's figures
 // of where a frame's work goes come from it, so its counts must agree with
 // the colour the same rays composite and with what the skipping saves.
@@ -6,7 +6,7 @@
 #include "gpu_fixture.hpp"
 #include "job/render_job.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 #include "scene/scene.hpp"
 
 #include <cmath>
@@ -47,7 +47,7 @@ TEST_F(Census, CountsTheSamplesTheColourCameFrom) {
         bake::GradientBaker baker(ctx());
         const render::GpuVolume gv = render::prepareVolume(
             ctx(), baker, volume, job::sceneWindow(scene, *volume), std::nullopt, nullptr);
-        render::SliceRenderer renderer(ctx());
+        render::VolumeRenderer renderer(ctx());
         const Image colour = renderer.render(scene, gv);
         renderer.setCensus(true);
         const Image census = renderer.render(scene, gv);

@@ -25,7 +25,7 @@ using nlohmann::json;
 // The head phantom (skin 1, skull 2, brain 3) seen from above, a peeler over
 // its crown deep enough to reach the brain, and label classification. With
 // `featureOnly` every tissue but the brain is transparent.
-json headScene(bool featureOnly) {
+json featureHeadDocument(bool featureOnly) {
     json tissue = json::parse(R"([{"value": 0, "color": [0.9, 0.7, 0.6], "alpha": 0},
         {"value": 60, "color": [0.9, 0.7, 0.6], "alpha": 0.05},
         {"value": 200, "color": [1, 1, 0.9], "alpha": 0.8}])");
@@ -80,7 +80,7 @@ class FeatureRender : public GpuTest {};
 constexpr float kTolerance = 2e-3f;
 
 TEST_F(FeatureRender, FeatureRendersAsWithoutTheOperator) {
-    const Image plain = render(ctx(), headScene(true));
+    const Image plain = render(ctx(), featureHeadDocument(true));
     double coverage = 0.0;
     for (std::size_t i = 3; i < plain.rgba.size(); i += 4)
         coverage += plain.rgba[i];
@@ -102,12 +102,12 @@ TEST_F(FeatureRender, FeatureRendersAsWithoutTheOperator) {
         json{{"mode", "surface"}, {"threshold", 30}, {"depth", tau}, {"band", delta}},
     };
     for (const json& alignment : aligned) {
-        const Image cut = render(ctx(), withPeeler(headScene(true), alignment));
+        const Image cut = render(ctx(), withPeeler(featureHeadDocument(true), alignment));
         expectAgree(plain, cut, kTolerance, alignment.dump());
     }
     // The same peel axis-aligned lifts the brain with the skin: the test can
     // fail, on any device (expectAgree).
-    const Image axis = render(ctx(), withPeeler(headScene(true), json{{"mode", "axis"}}));
+    const Image axis = render(ctx(), withPeeler(featureHeadDocument(true), json{{"mode", "axis"}}));
     const ImageDiff lifted = compareImages(plain, axis);
     EXPECT_GT(lifted.maxAbs, 0.2f);
     EXPECT_GT(lifted.rms, 2.0 * kQuantizedRms);
@@ -122,7 +122,7 @@ TEST_F(FeatureRender, FeatureRendersAsWithoutTheOperator) {
 // allows for the operator's proxy slicing the same points through other
 // polygons.
 TEST_F(FeatureRender, AnOperatorThatMovesNothingRendersAsNone) {
-    json plain = headScene(false);
+    json plain = featureHeadDocument(false);
     plain["render"]["classification"] = "preintegrated";
     plain["transfer"].erase("labels");
     // Not segment alignment: material that may move reads the scan without
@@ -149,10 +149,10 @@ TEST_F(FeatureRender, AnOperatorThatMovesNothingRendersAsNone) {
 }
 
 TEST_F(FeatureRender, AlignedOperatorsStillMoveTheRest) {
-    const Image plain = render(ctx(), headScene(false));
+    const Image plain = render(ctx(), featureHeadDocument(false));
     for (const json& alignment : {json{{"mode", "segment"}, {"labels", {"brain"}}},
                                   json{{"mode", "surface"}, {"threshold", 30}, {"depth", 1.5}}}) {
-        const Image cut = render(ctx(), withPeeler(headScene(false), alignment));
+        const Image cut = render(ctx(), withPeeler(featureHeadDocument(false), alignment));
         EXPECT_GT(compareImages(plain, cut).rms, 0.02) << alignment.dump();
     }
 }
@@ -160,7 +160,7 @@ TEST_F(FeatureRender, AlignedOperatorsStillMoveTheRest) {
 TEST_F(FeatureRender, LabelsPickTheirTransferFunction) {
     // Brain-only classification shows only where the brain is; the same scene
     // with the brain's function applied to every label shows more.
-    json brainOnly = headScene(true);
+    json brainOnly = featureHeadDocument(true);
     json everything = brainOnly;
     everything["transfer"]["points"] = brainOnly["transfer"]["labels"][0]["points"];
     const Image a = render(ctx(), brainOnly);

@@ -4,7 +4,7 @@
 #include "bake/gradient_bake.hpp"
 #include "job/render_job.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 
 #include <cmath>
 #include <glm/gtc/packing.hpp>
@@ -68,7 +68,7 @@ Image renderVolume(const gpu::Context& ctx, const Scene& scene, const Volume& vo
     bake::GradientBaker baker(ctx);
     render::GpuVolume gv = render::prepareVolume(ctx, baker, std::make_shared<Volume>(volume),
                                                  job::sceneWindow(scene, volume));
-    render::SliceRenderer renderer(ctx);
+    render::VolumeRenderer renderer(ctx);
     return renderer.render(scene, gv);
 }
 

@@ -28,8 +28,7 @@ Volume randomVolume(glm::ivec3 dims, glm::dvec3 spacing, unsigned seed) {
 // The baked texels (4 bytes each) in the grid's order, whichever the layout.
 std::vector<int8_t> gridTexels(const gpu::Context& ctx, const gpu::Image& gradients,
                                glm::ivec3 dims, bake::GradientLayout layout) {
-    const std::vector<std::byte> bytes =
-        gpu::downloadImage(ctx, gradients, bake::kGradientsLayout, 4);
+    const std::vector<std::byte> bytes = gpu::downloadImage(ctx, gradients, gradients.layout, 4);
     const auto* texels = reinterpret_cast<const int8_t*>(bytes.data());
     const VkExtent3D e = gradients.extent;
     std::vector<int8_t> grid(4 * std::size_t(dims.x) * dims.y * dims.z);
@@ -119,14 +118,15 @@ TEST_F(GpuTest, StorageFetchBakesTheSameGradientsAsSampling) {
     const std::pair<const Volume*, bake::ValueWindow> cases[] = {{&wide, {range.min, range.max}},
                                                                  {&narrow, {0.0, 255.0}}};
     for (const auto& [volume, window] : cases) {
-        const gpu::Image values = bake::uploadVolume(ctx(), *volume, window);
+        const gpu::Image values = bake::uploadVolume(ctx(), *volume, window, true);
         SCOPED_TRACE(values.format == VK_FORMAT_R8_UNORM ? "R8" : "R16");
         EXPECT_EQ(values.format, volume == &narrow ? VK_FORMAT_R8_UNORM : VK_FORMAT_R16_UNORM);
         for (const bake::GradientLayout layout : kLayouts) {
-            bake::GradientBaker baker(ctx());
             std::vector<int8_t> baked[2];
             for (int storage = 0; storage < 2; ++storage) {
-                baker.setStorageFetch(storage == 1);
+                gpu::DeviceTuning tuning = gpu::kCpuTuning;
+                tuning.storageValues = storage == 1;
+                const bake::GradientBaker baker(ctx(), tuning);
                 ASSERT_EQ(baker.storageFetch(), storage == 1);
                 baked[storage] =
                     gridTexels(ctx(), baker.bake(values, spacing, layout), dims, layout);
@@ -158,7 +158,7 @@ TEST_F(GpuTest, MirroredVolumeBakesTheMirroredGradientExactly) {
                 m[volume.index(x, y, z)] = v[volume.index(dims.x - 1 - x, y, z)];
     const ValueRange range = valueRange(volume);
     bake::GradientBaker baker(ctx());
-    const bake::GradientLayout layout = bake::gradientLayoutFor(ctx(), dims);
+    const bake::GradientLayout layout = bake::gradientLayoutFor(ctx(), ctx().tuning(), dims);
     const auto bakeOf = [&](const Volume& vol) {
         const gpu::Image values = bake::uploadVolume(ctx(), vol, {range.min, range.max});
         return gridTexels(ctx(), baker.bake(values, vol.spacing, layout), dims, layout);
@@ -211,9 +211,10 @@ TEST(GradientBricks, EachVoxelHasItsOwnTexelAndPatchesShareARow) {
 TEST_F(GpuTest, GradientsAreBrickedOnCpuDevicesWhereTheyFit) {
     const bool cpu = ctx().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     const int widest = static_cast<int>(ctx().properties().limits.maxImageDimension3D) / 4;
-    EXPECT_EQ(bake::gradientLayoutFor(ctx(), {widest, 9, 5}),
+    EXPECT_EQ(bake::gradientLayoutFor(ctx(), ctx().tuning(), {widest, 9, 5}),
               cpu ? bake::GradientLayout::Bricked : bake::GradientLayout::Linear);
-    EXPECT_EQ(bake::gradientLayoutFor(ctx(), {widest + 1, 9, 5}), bake::GradientLayout::Linear);
+    EXPECT_EQ(bake::gradientLayoutFor(ctx(), ctx().tuning(), {widest + 1, 9, 5}),
+              bake::GradientLayout::Linear);
 }
 
 TEST(GradientEncoding, PointsTowardIncreasingValueAndHonoursSpacing) {

@@ -1,4 +1,4 @@
-// Empty-space skipping for operator proxies (render/operator_regions.hpp):
+// Empty-space skipping for operator proxies (render/skipping/operator_regions.hpp):
 // the regions must cover every point of a deformed box whose sample can be
 // visible, so that an image rendered with them equals the image rendered
 // with the operator shader over the whole box.
@@ -9,10 +9,10 @@
 #include "job/render_job.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/occupancy.hpp"
-#include "render/operator_regions.hpp"
-#include "render/ray_cells.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/skipping/occupancy.hpp"
+#include "render/skipping/operator_regions.hpp"
+#include "render/skipping/ray_cells.hpp"
+#include "render/volume_renderer.hpp"
 #include "scene/scene.hpp"
 #include "shared/feature.h"
 #include "shared/operators.h"
@@ -170,7 +170,7 @@ int activeCount(const render::OperatorBlocks& b) {
 } // namespace
 
 // With the feature field's ranges, a block is active only where a case of
-// Eq. 4 can show something (render/case_occupancy.hpp): every point whose
+// Eq. 4 can show something (render/skipping/case_occupancy.hpp): every point whose
 // case, decided as the shader decides it, shows a visible cell's value lies
 // in an active block; and the peel's opening, occupied but neither feature
 // nor moved material, is skipped (fewer blocks than without the field).
@@ -300,7 +300,7 @@ TEST_F(OperatorRegionsRender, SkippingChangesNoPixel) {
                 bake::GradientBaker baker(ctx());
                 const render::GpuVolume gv = render::prepareVolume(
                     ctx(), baker, volume, job::sceneWindow(scene, *volume), std::nullopt, labels);
-                render::SliceRenderer renderer(ctx());
+                render::VolumeRenderer renderer(ctx());
                 renderer.setOperatorSkipping(false);
                 const Image whole = renderer.render(scene, gv);
                 renderer.setOperatorSkipping(true);

@@ -7,7 +7,7 @@
 #include "job/render_job.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 #include "scene/scene.hpp"
 
 #include <glm/gtc/packing.hpp>
@@ -219,7 +219,7 @@ TEST_F(GpuTest, MovingAnOperatorDoesNotRebakeItsMap) {
     bake::GradientBaker gradients(ctx());
     const render::GpuVolume gv = render::prepareVolume(
         ctx(), gradients, std::make_shared<Volume>(volume), job::sceneWindow(topView(), volume));
-    render::SliceRenderer renderer(ctx());
+    render::VolumeRenderer renderer(ctx());
     Scene s = parsedWith(
         R"([{ "type": "retractor", "placement": { "translate": [0, 0, 10], "scale": [20, 20, 20] } }])");
     renderer.render(s, gv);

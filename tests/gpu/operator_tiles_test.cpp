@@ -1,4 +1,4 @@
-// The tiles the ray caster's operator shader runs over (render/raycaster.hpp,
+// The tiles the ray caster's operator shader runs over (render/raycast/raycaster.hpp,
 // tilesCovering): every pixel whose ray meets an operator's box must lie in
 // them, or the box would vanish from the image there; the fewer others, the
 // less the operators' code costs the rays that miss it. (No device needed;
@@ -7,7 +7,7 @@
 // OperatorRegionsRender.SkippingChangesNoPixel.)
 #include "operators/operator_geometry.hpp"
 #include "render/camera.hpp"
-#include "render/raycaster.hpp"
+#include "render/raycast/raycaster.hpp"
 #include "scene/scene.hpp"
 
 #include <algorithm>

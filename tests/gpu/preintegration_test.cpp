@@ -1,7 +1,7 @@
-// The pre-integration table (render/preintegration.hpp) on the CPU: the
+// The pre-integration table (render/classify/preintegration.hpp) on the CPU: the
 // model's closed forms, its symmetry, and the same table on any number of
 // threads. No device.
-#include "render/preintegration.hpp"
+#include "render/classify/preintegration.hpp"
 
 #include <algorithm>
 #include <cmath>

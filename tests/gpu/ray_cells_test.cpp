@@ -4,10 +4,10 @@
 // The claim the ray caster relies on: in a cell flagged empty, every
 // trilinear sample and every slab up to the margin long that starts there is
 // transparent.
-#include "render/occupancy.hpp"
-#include "render/preintegration.hpp"
-#include "render/ray_cells.hpp"
-#include "render/transfer_table.hpp"
+#include "render/classify/preintegration.hpp"
+#include "render/classify/transfer_table.hpp"
+#include "render/skipping/occupancy.hpp"
+#include "render/skipping/ray_cells.hpp"
 #include "shared/visible_runs.h"
 #include "volume/volume.hpp"
 

@@ -6,7 +6,7 @@
 #include "job/render_job.hpp"
 #include "render/camera.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 #include "scene/scene.hpp"
 
 #include <algorithm>
@@ -262,7 +262,7 @@ TEST_F(GpuTest, AReusedRendererFollowsTransferAndSpacingChanges) {
     bake::GradientBaker baker(ctx());
     const render::GpuVolume gv = render::prepareVolume(
         ctx(), baker, std::make_shared<Volume>(volume), job::sceneWindow(a, volume));
-    render::SliceRenderer reused(ctx());
+    render::VolumeRenderer reused(ctx());
     reused.render(a, gv);
     const Image b1 = reused.render(b, gv);
     const Image c1 = reused.render(c, gv);

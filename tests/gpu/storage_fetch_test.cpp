@@ -15,7 +15,7 @@
 #include "gpu_fixture.hpp"
 #include "job/render_job.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 #include "scene/scene.hpp"
 
 #include <gtest/gtest.h>
@@ -26,13 +26,20 @@ namespace {
 
 class StorageFetch : public GpuTest {};
 
+// The CPU devices' profile, with the values loaded or sampled.
+gpu::DeviceTuning cpuTuning(bool storageValues) {
+    gpu::DeviceTuning tuning = gpu::kCpuTuning;
+    tuning.storageValues = storageValues;
+    return tuning;
+}
+
 // Renders `scene` of `gv` with the values sampled and with them loaded.
-std::pair<Image, Image> bothWays(render::SliceRenderer& renderer, const Scene& scene,
+std::pair<Image, Image> bothWays(const gpu::Context& ctx, const Scene& scene,
                                  const render::GpuVolume& gv) {
-    renderer.setStorageFetch(false);
-    Image sampled = renderer.render(scene, gv);
-    renderer.setStorageFetch(true);
-    Image loaded = renderer.render(scene, gv);
+    render::VolumeRenderer sampling(ctx, cpuTuning(false));
+    Image sampled = sampling.render(scene, gv);
+    render::VolumeRenderer loading(ctx, cpuTuning(true));
+    Image loaded = loading.render(scene, gv);
     return {std::move(sampled), std::move(loaded)};
 }
 
@@ -54,13 +61,12 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
                 SCOPED_TRACE(std::string(window) + " " + method + " " +
                              (scene.operators.empty() ? "no operator" : scene.operators[0].name));
                 const auto volume = std::make_shared<const Volume>(job::loadSceneVolume(scene));
-                const bake::GradientBaker baker(ctx());
+                const bake::GradientBaker baker(ctx(), cpuTuning(true));
                 const render::GpuVolume gv =
                     render::prepareVolume(ctx(), baker, volume, job::sceneWindow(scene, *volume),
                                           std::nullopt, job::loadSceneLabels(scene, volume));
                 ASSERT_EQ(gv.values.format, format);
-                render::SliceRenderer renderer(ctx());
-                const auto [sampled, loaded] = bothWays(renderer, scene, gv);
+                const auto [sampled, loaded] = bothWays(ctx(), scene, gv);
                 double coverage = 0.0;
                 for (std::size_t i = 3; i < loaded.rgba.size(); i += 4)
                     coverage += loaded.rgba[i];
@@ -98,8 +104,8 @@ TEST_F(StorageFetch, BrickedGradientsRenderAsTheSampledOnesDo) {
         R"([{ "type": "peeler", "placement": { "translate": [0, 0, 16], "scale": [50, 50, 30] },
                    "params": { "hinge": -10, "thickness": 12, "angle": 130 },
                    "alignment": {"mode": "surface", "threshold": 30, "depth": 3, "band": 2} }])"};
-    const bake::GradientBaker baker(ctx());
-    render::SliceRenderer renderer(ctx());
+    const bake::GradientBaker baker(ctx(), gpu::kCpuTuning);
+    render::VolumeRenderer renderer(ctx(), gpu::kCpuTuning);
     for (const char* ops : operators)
         for (const char* method : {"slicing", "raycast"}) {
             nlohmann::json doc = operatorPhantomDocument();

@@ -54,7 +54,7 @@ TEST(TileOrder, EveryTileOnceAndNeighboursInABandTogether) {
             // In rows, the tile below comes a whole row of workgroups later.
             for (std::uint32_t y = 0; y + 1 < rows; ++y)
                 for (std::uint32_t x = 0; x < columns; ++x)
-                    if ((y + 1) % CW_TILE_BAND != 0) {
+                    if ((y + 1) % shader::kTileBand != 0) {
                         const std::int64_t gap = std::int64_t(when[(y + 1) * columns + x]) -
                                                  std::int64_t(when[y * columns + x]);
                         EXPECT_EQ(gap, 1) << columns << "x" << rows << ", tile " << x << " " << y;

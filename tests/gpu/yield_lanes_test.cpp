@@ -10,7 +10,7 @@
 #include "gpu_fixture.hpp"
 #include "job/render_job.hpp"
 #include "render/gpu_volume.hpp"
-#include "render/slice_renderer.hpp"
+#include "render/volume_renderer.hpp"
 #include "scene/scene.hpp"
 
 #include <gtest/gtest.h>
@@ -35,14 +35,17 @@ TEST_F(YieldLanes, RendersTheSameImageAsLanesThatWait) {
         const render::GpuVolume gv =
             render::prepareVolume(ctx(), baker, volume, job::sceneWindow(scene, *volume),
                                   std::nullopt, job::loadSceneLabels(scene, volume));
-        render::SliceRenderer renderer(ctx());
-        EXPECT_EQ(renderer.yieldLanes(),
+        const render::VolumeRenderer defaults(ctx());
+        EXPECT_EQ(defaults.tuning().yieldLanes,
                   ctx().properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU);
-        renderer.setYieldLanes(false);
-        const Image waiting = renderer.render(scene, gv);
-        renderer.setYieldLanes(true);
-        ASSERT_TRUE(renderer.yieldLanes());
-        const Image yielding = renderer.render(scene, gv);
+        gpu::DeviceTuning tuning = ctx().tuning();
+        tuning.yieldLanes = false;
+        render::VolumeRenderer waitingLanes(ctx(), tuning);
+        const Image waiting = waitingLanes.render(scene, gv);
+        tuning.yieldLanes = true;
+        render::VolumeRenderer yieldingLanes(ctx(), tuning);
+        ASSERT_TRUE(yieldingLanes.tuning().yieldLanes);
+        const Image yielding = yieldingLanes.render(scene, gv);
         double coverage = 0.0;
         for (std::size_t i = 3; i < yielding.rgba.size(); i += 4)
             coverage += yielding.rgba[i];
