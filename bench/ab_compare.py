@@ -7,11 +7,11 @@ pair), and the table gives, per row, the median of A's and of B's frame
 medians and the median and range of B / A over the pairs. A ratio whose range
 straddles 1 is within the noise; so can be one that does not: the same build
 against itself gave 0.86-1.27 over 8 pairs, medians 0.95-0.98
-(docs/performance.md, "What a fetch costs"). The drift only ever adds time,
+(docs/design/profiling.md#noise-first). The drift only ever adds time,
 so two more columns compare each build's least disturbed runs: B's fastest
 frame median over A's, and B's fastest frame (the row's cheapest view) over
 A's. Where the drift comes in bursts they are steadier than the median ratio
-(docs/performance.md, "The map's derivatives, baked (measured, not kept)"),
+(docs/design/profiling.md#noise-first),
 but not immune: a build that only swapped a `pow` for a product once came
 out 10 % slower by them, where it could only be faster.
 

@@ -1,4 +1,4 @@
-// The paper's Table 1 benchmark (docs/performance.md): 512x512 frames, slice
+// The paper's Table 1 benchmark (docs/performance.md#how-to-measure): 512x512 frames, slice
 // spacing 1.0 and 0.5, shading on, one operator aligned four ways (none, axis,
 // surface, segment) on each dataset of bench/table1.json; the bake times and
 // peak memory of each dataset; and a 36-frame turntable written to disk.

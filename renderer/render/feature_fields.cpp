@@ -51,35 +51,30 @@ FeatureFields::Described FeatureFields::describe(const Alignment& a, const GpuVo
         m_otsu.reset();
         m_serial = volume.serial;
     }
-    std::ostringstream key;
-    key.precision(17);
+    FieldKey key{a.mode, 0.0, 0.0, std::nullopt, {}};
     std::string note;
     if (a.mode == AlignmentMode::Surface) {
-        const double t = threshold(a, volume);
-        key << "surface " << t;
-        note = "distance field of the object above " + number(t) +
+        key.threshold = threshold(a, volume);
+        note = "distance field of the object above " + number(key.threshold) +
                (a.threshold ? "" : " (Otsu's threshold)");
     } else {
-        key << "segment " << a.band;
+        key.band = a.band;
         if (a.range) {
-            key << " range " << (*a.range)[0] << ' ' << (*a.range)[1];
+            key.range = a.range;
             note = "segment mask of values in [" + number((*a.range)[0]) + ", " +
                    number((*a.range)[1]) + "]";
         } else {
-            key << " labels";
+            key.labels = a.labels;
             note = "segment mask of labels";
-            for (const std::int64_t id : a.labels) {
-                key << ' ' << id;
-                note += ' ';
-                note += std::to_string(id);
-            }
+            for (const std::int64_t id : a.labels)
+                note += ' ' + std::to_string(id);
         }
     }
-    return {key.str(), note};
+    return {std::move(key), note};
 }
 
 void FeatureFields::keepOnly(const std::vector<OperatorSpec>& specs, const GpuVolume& volume) {
-    std::set<std::string> wanted;
+    std::set<FieldKey> wanted;
     for (const OperatorSpec& spec : specs)
         if (spec.alignment.mode != AlignmentMode::Axis)
             wanted.insert(describe(spec.alignment, volume).key);

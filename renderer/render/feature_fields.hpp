@@ -9,8 +9,10 @@
 #include "render/gpu_volume.hpp"
 #include "scene/scene.hpp"
 
+#include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,8 +57,17 @@ public:
     int bakes() const { return m_bakes; }
 
 private:
+    /// What a field comes from, on one volume: equal keys, equal fields.
+    struct FieldKey {
+        AlignmentMode mode = AlignmentMode::Surface;
+        double threshold = 0.0;                     ///< surface: the object's, resolved (Otsu's)
+        double band = 0.0;                          ///< segment: the mask's smoothing
+        std::optional<std::array<double, 2>> range; ///< segment: by values
+        std::vector<std::int64_t> labels;           ///< segment: by labels
+        auto operator<=>(const FieldKey&) const = default;
+    };
     struct Described {
-        std::string key;  ///< equal keys, equal fields
+        FieldKey key;
         std::string note; ///< what the field is, for takeNotes
     };
     Described describe(const Alignment& alignment, const GpuVolume& volume);
@@ -76,7 +87,7 @@ private:
         float rangeScale = 1.0f; ///< the ranges' steps per unit of the field
         std::optional<bake::FieldRanges> ranges;
     };
-    std::map<std::string, Field> m_fields;
+    std::map<FieldKey, Field> m_fields;
     std::uint64_t m_nextId = 1;
     std::vector<std::string> m_notes;
     int m_bakes = 0;

@@ -1,4 +1,4 @@
-// GLSL only: the ray caster (render.method "raycast", docs/performance.md):
+// GLSL only: the ray caster (render.method "raycast", docs/design/ray-caster.md):
 // one invocation per pixel marches its ray front to back, taking its samples
 // where the ray crosses the slicing planes s_k = (k + 0.5) * spacing, so it
 // samples exactly where slicing would and calls the same per-sample code
@@ -25,7 +25,7 @@
 // CW_RAY_ONE_OPERATOR too: the shader for one operator, without the loop
 // over two or three boxes. lavapipe keeps every shader's NIR, dead code and
 // all, as long as its pipeline lives; that loop's three copies of the
-// operator's code took 25-38 MiB of the frog's peak (docs/performance.md).
+// operator's code took 25-38 MiB of the frog's peak (docs/design/lavapipe.md#compilation-and-memory).
 #ifndef CUTAWAY_RAY_MARCH_H
 #define CUTAWAY_RAY_MARCH_H
 
@@ -155,7 +155,7 @@ float stepsOverEmpty(vec3 tc, vec3 cellStep, vec3 invCellStep, bool slabsInMargi
 // between them (and their neighbours: the lookup filters) is visible for
 // some classification. Conservative where the lookup is exact, and where
 // the runs join gaps (VisibleValues::runs); arithmetic instead of a table
-// read per sample (docs/performance.md, "The visible bins as runs").
+// read per sample (docs/design/ray-caster.md#the-march).
 bool mayShow(float front, float back) {
     return runsMayShow(runLo, runHi, runBins, front, back);
 }
@@ -462,7 +462,7 @@ void main() {
     // a shader at least once per 8 rays, masked where no ray takes it: an
     // operator's resolve and shading, run so once, cost rays that meet no
     // box a sixth of ct_head's frame (187 ms against 217 with the box out of
-    // view, docs/performance.md).
+    // view, docs/design/lavapipe.md#eight-lanes-in-lock-step).
     if (all(greaterThanEqual(tile, unpackTile(ray.operatorTilesLo))) &&
         all(lessThan(tile, unpackTile(ray.operatorTilesHi))))
         return;

@@ -2,8 +2,7 @@
 // test at every sample it fetches, as arithmetic on at most CW_VISIBLE_RUNS
 // runs of visible bins (VisibleValues::runs, render/skipping/occupancy.hpp). A table
 // lookup per sample was a storage-buffer read, which lavapipe makes lane by
-// lane; the runs are read once per ray (docs/performance.md, "The visible
-// bins as runs").
+// lane; the runs are read once per ray (docs/design/ray-caster.md#the-march).
 #ifndef CUTAWAY_VISIBLE_RUNS_H
 #define CUTAWAY_VISIBLE_RUNS_H
 

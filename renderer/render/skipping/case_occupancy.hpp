@@ -8,8 +8,7 @@
 // occupied; with it, only where the field's range over a cell of the ray
 // caster's grid lets the case occur: a peel's opening is empty where its
 // points are not the feature (M(p') < 0.5) and have no pre-image, though the
-// volume there is occupied (docs/performance.md, "Operators: the feature's
-// empty space").
+// volume there is occupied (docs/design/empty-space.md#operators-boxes).
 #include "bake/feature_ranges.hpp"
 #include "render/skipping/occupancy.hpp"
 

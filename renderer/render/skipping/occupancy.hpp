@@ -1,5 +1,5 @@
 #pragma once
-// Empty-space skipping for slicing (docs/performance.md). The volume is cut
+// Empty-space skipping for slicing (docs/design/empty-space.md). The volume is cut
 // into bricks of kBrickVoxels^3; a brick is occupied when some transfer
 // function gives opacity to a value between the smallest and largest voxel
 // that a sample in the brick, or a slab that starts there, can read: the

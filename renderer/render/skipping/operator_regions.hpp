@@ -1,5 +1,5 @@
 #pragma once
-// Empty-space skipping for operator proxies (docs/performance.md). A point p'
+// Empty-space skipping for operator proxies (docs/design/empty-space.md#operators-boxes). A point p'
 // of an operator's deformed box shows something only where the volume can be
 // seen at p' (a feature point left in place, Eq. 4) or at its pre-image p0
 // (Eq. 3). Over each cell between the baked map's texel centres, p0 is p' plus

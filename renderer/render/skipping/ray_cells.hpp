@@ -1,5 +1,5 @@
 #pragma once
-// Empty-space skipping for the ray caster (docs/performance.md). The volume is
+// Empty-space skipping for the ray caster (docs/design/empty-space.md). The volume is
 // cut into cells of kRayCellVoxels^3; a cell is empty when the classification
 // gives no opacity to any value that a sample in the cell, or a slab up to the
 // margin long that starts there, can read (as for the bricks, occupancy.hpp). A ray at a sample in
