@@ -7,6 +7,7 @@
 #   make gallery  render every gallery scene at 512^2: docs/gallery/*.png and docs/gallery.md
 #   make fuzz   the libFuzzer targets of fuzz/ (clang, ASan + UBSan, in build-fuzz/), each run
 #               for FUZZ_SECONDS; fails if any finds a crash
+#   make format clang-format (.clang-format) on the C++ sources and the shaders, GLSL included
 BUILD ?= build
 JOBS ?= $(shell nproc)
 BUILD_TYPE ?= Release
@@ -83,8 +84,8 @@ gallery: configure
 	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway
 	@/usr/bin/python3 scripts/gallery.py $(BUILD)/cutaway $(SCENES)
 
-format:
-	@git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i
+format: ## clang-format on C++, GLSL and the shared headers
+	@git ls-files '*.cpp' '*.hpp' '*.h' '*.glsl' | xargs clang-format -i
 
 clean:
 	@rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) out

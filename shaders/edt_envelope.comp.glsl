@@ -13,10 +13,12 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = CW_FEATURE_BIND_SRC, r16f) uniform readonly image3D srcImage;
 layout(set = 0, binding = CW_FEATURE_BIND_DST, r16f) uniform writeonly image3D dstImage;
-layout(push_constant) uniform Push { FeatureBakeParams params; };
+layout(push_constant) uniform Push {
+    FeatureBakeParams params;
+};
 
-int v[kEdtMaxLine];      // abscissae of the parabolas in the envelope
-float fv[kEdtMaxLine];   // their values f(v[k])
+int v[kEdtMaxLine];       // abscissae of the parabolas in the envelope
+float fv[kEdtMaxLine];    // their values f(v[k])
 float z[kEdtMaxLine + 1]; // parabola k is lowest on [z[k], z[k + 1]]
 
 #include "glsl/line_pass.h"
@@ -52,12 +54,14 @@ void main() {
     }
 
     if (k < 0) {
-        for (int p = 0; p < n; ++p) imageStore(dstImage, voxel(p, uv), vec4(kHalfMax));
+        for (int p = 0; p < n; ++p)
+            imageStore(dstImage, voxel(p, uv), vec4(kHalfMax));
         return;
     }
     k = 0;
     for (int p = 0; p < n; ++p) {
-        while (z[k + 1] < float(p)) ++k;
+        while (z[k + 1] < float(p))
+            ++k;
         float d = float(p - v[k]);
         imageStore(dstImage, voxel(p, uv), vec4(storedDistance(w2 * d * d + fv[k])));
     }

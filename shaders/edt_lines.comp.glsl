@@ -12,7 +12,9 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = CW_FEATURE_BIND_SOURCE) uniform sampler3D sourceTex;
 layout(set = 0, binding = CW_FEATURE_BIND_DST, r16f) uniform image3D dstImage;
-layout(push_constant) uniform Push { FeatureBakeParams params; };
+layout(push_constant) uniform Push {
+    FeatureBakeParams params;
+};
 
 void main() {
     ivec2 yz = ivec2(gl_GlobalInvocationID.xy);

@@ -12,7 +12,9 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = CW_RANGES_BIND_FIELD, r16f) uniform readonly image3D field;
 layout(set = 0, binding = CW_RANGES_BIND_OUT, rg8i) uniform writeonly iimage3D ranges;
-layout(push_constant) uniform Push { FieldRangeParams params; };
+layout(push_constant) uniform Push {
+    FieldRangeParams params;
+};
 
 // Ranges of the two cells' windows (xy: the first's, zw: the second's), min
 // and max.
@@ -63,7 +65,8 @@ void main() {
         }
         below = beforeLast;
         at = last;
-        imageStore(ranges, ivec3(cell, cz), ivec4(encodeFieldRange(sum.a.x, sum.a.y, params.scale), 0, 0));
+        imageStore(ranges, ivec3(cell, cz),
+                   ivec4(encodeFieldRange(sum.a.x, sum.a.y, params.scale), 0, 0));
         if (cell.x + 1 < n.x)
             imageStore(ranges, ivec3(cell.x + 1, cell.y, cz),
                        ivec4(encodeFieldRange(sum.b.x, sum.b.y, params.scale), 0, 0));

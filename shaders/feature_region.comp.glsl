@@ -12,14 +12,19 @@
 #define kTileTexels (kTile.x * kTile.y * kTile.z)
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
 layout(set = 0, binding = CW_REGION_BIND_VALUES) uniform sampler3D volumeTex; // normalized values
-layout(set = 0, binding = CW_REGION_BIND_MASK) uniform sampler3D maskTex;   // M over the volume's grid
+layout(set = 0,
+       binding = CW_REGION_BIND_MASK) uniform sampler3D maskTex; // M over the volume's grid
 layout(set = 0, binding = CW_REGION_BIND_OUT, rg16f) uniform writeonly image3D region;
-layout(push_constant) uniform Push { FeatureRegionParams params; };
+layout(push_constant) uniform Push {
+    FeatureRegionParams params;
+};
 
 shared float tileMask[kTileTexels]; // 1 (inside: skipped) beyond the grid
 shared float tileValue[kTileTexels];
 
-int tileIndex(ivec3 t) { return t.x + kTile.x * (t.y + kTile.y * t.z); }
+int tileIndex(ivec3 t) {
+    return t.x + kTile.x * (t.y + kTile.y * t.z);
+}
 
 void main() {
     ivec3 first = params.lo + ivec3(gl_WorkGroupID) * kGroup - 1; // the tile's voxel (0,0,0)

@@ -9,7 +9,9 @@
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = CW_FEATURE_BIND_SOURCE) uniform sampler3D sourceTex;
 layout(set = 0, binding = CW_FEATURE_BIND_OUT, r16f) uniform image3D field;
-layout(push_constant) uniform Push { FeatureBakeParams params; };
+layout(push_constant) uniform Push {
+    FeatureBakeParams params;
+};
 
 void main() {
     ivec3 p = ivec3(gl_GlobalInvocationID);

@@ -17,7 +17,8 @@
 #define kRun 4
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = CW_GRADIENT_BIND_VALUES) uniform sampler3D volumeTex;
-layout(set = 0, binding = CW_GRADIENT_BIND_OUT, rgba8_snorm) uniform writeonly image3D gradientImage;
+layout(set = 0, binding = CW_GRADIENT_BIND_OUT,
+       rgba8_snorm) uniform writeonly image3D gradientImage;
 #ifdef CW_STORAGE_PATHS
 // The values read as the storage image they also are (bake::ValueStorageBindings):
 // 0: sampled; 1: the R8 image volumeImage8; 2: the R16 one, volumeImage16.
@@ -27,7 +28,9 @@ layout(constant_id = CW_GRADIENT_SPEC_STORAGE_FETCH) const int cwStorageFetch = 
 layout(set = 0, binding = CW_GRADIENT_BIND_VALUES_R8, r8) uniform readonly image3D volumeImage8;
 layout(set = 0, binding = CW_GRADIENT_BIND_VALUES_R16, r16) uniform readonly image3D volumeImage16;
 #endif
-layout(push_constant) uniform Push { GradientParams params; };
+layout(push_constant) uniform Push {
+    GradientParams params;
+};
 
 float at(ivec3 p) {
     ivec3 q = clamp(p, ivec3(0), params.dims - 1);
@@ -55,7 +58,9 @@ void loadPlane(int k, ivec3 p) {
 // [1 2 1] across x of `row` around column i. Each sum adds a voxel's two
 // neighbours first, so a volume mirrored about a plane bakes the mirrored
 // gradient to the bit (rounding does not depend on the side).
-float smoothX(float row[kRun + 2], int i) { return (row[i - 1] + row[i + 1]) + 2.0 * row[i]; }
+float smoothX(float row[kRun + 2], int i) {
+    return (row[i - 1] + row[i + 1]) + 2.0 * row[i];
+}
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID.x * kRun, gl_GlobalInvocationID.y,

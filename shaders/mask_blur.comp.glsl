@@ -22,7 +22,9 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(set = 0, binding = CW_FEATURE_BIND_SOURCE) uniform sampler3D sourceTex;
 layout(set = 0, binding = CW_FEATURE_BIND_SRC, r16f) uniform readonly image3D srcImage;
 layout(set = 0, binding = CW_FEATURE_BIND_DST, r16f) uniform writeonly image3D dstImage;
-layout(push_constant) uniform Push { FeatureBakeParams params; };
+layout(push_constant) uniform Push {
+    FeatureBakeParams params;
+};
 
 shared float weights[kBlurMaxRadius + 1];
 
@@ -43,7 +45,8 @@ void main() {
     if (!invocationLine(uv, n)) return;
     int r = params.radius;
     float weightSum = 0.0;
-    for (int i = -r; i <= r; ++i) weightSum += weights[abs(i)];
+    for (int i = -r; i <= r; ++i)
+        weightSum += weights[abs(i)];
     float w[kWindow + 1];
     [[unroll]] for (int i = 0; i <= kWindow; ++i) w[i] = i <= r ? weights[i] : 0.0;
     // window[j] holds the value at p - kWindow + j.

@@ -11,8 +11,12 @@ layout(location = 2) in vec4 inColor;
 layout(location = 0) out vec3 worldPos;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 color;
-layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms u; };
-layout(push_constant) uniform Push { MeshDraw draw; };
+layout(std140, set = 0, binding = 0) uniform Frame {
+    FrameUniforms u;
+};
+layout(push_constant) uniform Push {
+    MeshDraw draw;
+};
 
 void main() {
     vec4 world = draw.modelToWorld * vec4(inPosition, 1.0);

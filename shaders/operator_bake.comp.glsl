@@ -9,7 +9,9 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
 layout(set = 0, binding = CW_OPBAKE_BIND_MAP, rgba16f) uniform writeonly image3D operatorMap;
-layout(push_constant) uniform Push { OperatorBakeParams bake; };
+layout(push_constant) uniform Push {
+    OperatorBakeParams bake;
+};
 
 void main() {
     ivec3 id = ivec3(gl_GlobalInvocationID);

@@ -20,8 +20,11 @@
 
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 4) in;
 layout(set = 0, binding = CW_OPBAKE_BIND_MAP) uniform sampler3D operatorMap;
-layout(set = 0, binding = CW_OPBAKE_BIND_DERIVATIVES, rgba16f) uniform writeonly image3D derivatives;
-layout(push_constant) uniform Push { OperatorBakeParams bake; };
+layout(set = 0, binding = CW_OPBAKE_BIND_DERIVATIVES,
+       rgba16f) uniform writeonly image3D derivatives;
+layout(push_constant) uniform Push {
+    OperatorBakeParams bake;
+};
 
 // The central difference along `axis` at map texel t, per local unit.
 vec4 centralDifference(ivec3 t, int axis) {

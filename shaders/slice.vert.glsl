@@ -6,7 +6,9 @@
 
 layout(location = 0) in vec3 inWorld;
 layout(location = 0) out vec3 worldPos;
-layout(std140, set = 0, binding = 0) uniform Frame { FrameUniforms u; };
+layout(std140, set = 0, binding = 0) uniform Frame {
+    FrameUniforms u;
+};
 
 void main() {
     worldPos = inWorld;

@@ -25,7 +25,8 @@
 // CW_RAY_ONE_OPERATOR too: the shader for one operator, without the loop
 // over two or three boxes. lavapipe keeps every shader's NIR, dead code and
 // all, as long as its pipeline lives; that loop's three copies of the
-// operator's code took 25-38 MiB of the frog's peak (docs/design/lavapipe.md#compilation-and-memory).
+// operator's code took 25-38 MiB of the frog's peak
+// (docs/design/lavapipe.md#compilation-and-memory).
 #ifndef CUTAWAY_RAY_MARCH_H
 #define CUTAWAY_RAY_MARCH_H
 

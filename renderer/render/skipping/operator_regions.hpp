@@ -1,15 +1,13 @@
 #pragma once
-// Empty-space skipping for operator proxies (docs/design/empty-space.md#operators-boxes). A point p'
-// of an operator's deformed box shows something only where the volume can be
-// seen at p' (a feature point left in place, Eq. 4) or at its pre-image p0
-// (Eq. 3). Over each cell between the baked map's texel centres, p0 is p' plus
-// a trilinear blend of the eight corner texels' displacements, so it lies in
-// the cell moved by the corners' smallest and largest displacement; and p0
-// exists only if some corner lies outside a cut (w > 0). A cell where neither
-// box can show its case (CaseOccupancy: p' where a point is left in place,
-// p0 where material moves; both wherever a brick is occupied unless the
-// feature field's ranges say more) draws nothing. The other cells, grown by the
-// reach of a slab (the shader also resolves the slab's back and middle), are
+// Empty-space skipping for operator proxies (docs/design/empty-space.md#operators-boxes). A point
+// p' of an operator's deformed box shows something only where the volume can be seen at p' (a
+// feature point left in place, Eq. 4) or at its pre-image p0 (Eq. 3). Over each cell between the
+// baked map's texel centres, p0 is p' plus a trilinear blend of the eight corner texels'
+// displacements, so it lies in the cell moved by the corners' smallest and largest displacement;
+// and p0 exists only if some corner lies outside a cut (w > 0). A cell where neither box can show
+// its case (CaseOccupancy: p' where a point is left in place, p0 where material moves; both
+// wherever a brick is occupied unless the feature field's ranges say more) draws nothing. The other
+// cells, grown by the reach of a slab (the shader also resolves the slab's back and middle), are
 // merged into boxes of the operator's local frame: only these run the operator
 // shader, while a cheap stencil-only pass still marks the whole box so the
 // untouched volume is never drawn inside it.
