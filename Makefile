@@ -8,11 +8,14 @@
 #   make fuzz   the libFuzzer targets of fuzz/ (clang, ASan + UBSan, in build-fuzz/), each run
 #               for FUZZ_SECONDS; fails if any finds a crash
 #   make format clang-format (.clang-format) on the C++ sources and the shaders, GLSL included
+#   make build-files  every file compiled on its own (no unity batches, unoptimized, in
+#               build-files/), so a batch cannot hide a missing include
+#   make lint   no function over 100 lines in renderer/ or cli/ (clang-tidy, on build-files/)
 BUILD ?= build
 JOBS ?= $(shell nproc)
 BUILD_TYPE ?= Release
 
-.PHONY: all deps configure build demo test test-sanitize fuzz bench gallery clean format
+.PHONY: all deps configure build demo test test-sanitize fuzz bench gallery clean format build-files lint
 
 all: build
 
@@ -71,6 +74,20 @@ fuzz:
 	@cmake --build $(FUZZ_BUILD) --parallel $(JOBS)
 	@bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
+# Each file compiled on its own: what the unity build's batches could hide
+# (an include a file needs but gets from its batch) fails here. Unoptimized,
+# since only compiling matters; nothing of it is run.
+FILES_BUILD ?= build-files
+build-files: deps
+	@if [ ! -f $(FILES_BUILD)/build.ninja ]; then \
+	  cmake -S . -B $(FILES_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 \
+	    -DCUTAWAY_UNITY=OFF >/dev/null; fi
+	@cmake --build $(FILES_BUILD) --parallel $(JOBS)
+
+lint: build-files
+	@bash scripts/install-deps.sh --lint
+	@bash scripts/lint.sh $(FILES_BUILD)
+
 bench: configure
 	@bash scripts/install-deps.sh --bench
 	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_bench
@@ -88,4 +105,4 @@ format: ## clang-format on C++, GLSL and the shared headers
 	@git ls-files '*.cpp' '*.hpp' '*.h' '*.glsl' | xargs clang-format -i
 
 clean:
-	@rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) out
+	@rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(FILES_BUILD) out

@@ -3,7 +3,7 @@
 # Idempotent and quiet: when everything is present it prints nothing and
 # touches nothing. Used by `make demo`, `make test` and CI alike; `make bench`
 # passes --bench for the VTK comparison's packages as well, `make fuzz` --fuzz
-# for clang and libFuzzer.
+# for clang and libFuzzer, `make lint` --lint for clang-tidy.
 set -euo pipefail
 
 packages=(
@@ -24,7 +24,8 @@ for option in "$@"; do
   case "$option" in
     --bench) packages+=(python3-vtk9 xvfb xauth linux-perf gdb binutils) ;;
     --fuzz) packages+=(clang libclang-rt-dev) ;;
-    *) echo "usage: $0 [--bench] [--fuzz]" >&2; exit 2 ;;
+    --lint) packages+=(clang-tidy) ;;
+    *) echo "usage: $0 [--bench] [--fuzz] [--lint]" >&2; exit 2 ;;
   esac
 done
 
