@@ -11,7 +11,7 @@ packages=(
   glslang-tools
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
-  libgtest-dev zlib1g-dev python3-jsonschema
+  libgtest-dev zlib1g-dev libpng-dev python3-jsonschema
   libtinygltf-dev
 )
 # The benchmark's comparison with VTK's CPU ray caster (bench/vtk_bench.py)

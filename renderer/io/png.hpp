@@ -1,6 +1,6 @@
 #pragma once
-// An 8-bit sRGB PNG preview of a linear premultiplied image, written with zlib
-// (no libpng). Colour is un-premultiplied and sRGB-encoded; alpha is kept, so a
+// An 8-bit sRGB PNG preview of a linear premultiplied image, written with
+// libpng. Colour is un-premultiplied and sRGB-encoded; alpha is kept, so a
 // transparent background stays transparent. Written atomically.
 #include "io/image.hpp"
 

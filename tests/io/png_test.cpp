@@ -2,15 +2,20 @@
 #include "io/png.hpp"
 #include "temp_dir.hpp"
 
+#include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <gtest/gtest.h>
 #include <iterator>
+#include <map>
 #include <set>
 #include <string>
+#include <sys/resource.h>
 #include <vector>
 #include <zlib.h>
 
@@ -30,10 +35,12 @@ std::uint32_t be32(const std::uint8_t* p) {
 struct Decoded {
     int width = 0, height = 0;
     std::vector<std::string> chunkTypes;
-    std::vector<std::uint8_t> srgb; ///< sRGB chunk payload
-    PngBytes rgba;                  ///< width * height * 4
-    std::vector<int> filters;       ///< each row's filter type
-    std::vector<int> bestFilters;   ///< each row's filter of the least sum of |residual|
+    std::vector<std::uint32_t> idatSizes;
+    std::map<std::string, PngBytes> payloads; ///< each chunk type's last payload
+    std::vector<std::uint8_t> srgb;           ///< sRGB chunk payload
+    PngBytes rgba;                            ///< width * height * 4
+    std::vector<int> filters;                 ///< each row's filter type
+    std::vector<int> bestFilters;             ///< each row's filter of the least sum of |residual|
     const std::uint8_t* pixel(int x, int y) const {
         return &rgba[(std::size_t(y) * width + x) * 4];
     }
@@ -64,6 +71,7 @@ void decode(const fs::path& path, Decoded& out) {
         const uLong crc = crc32(0L, &file[at + 4], length + 4);
         ASSERT_EQ(be32(data + length), static_cast<std::uint32_t>(crc)) << "CRC of " << type;
         out.chunkTypes.push_back(type);
+        out.payloads[type].assign(data, data + length);
         if (type == "IHDR") {
             ASSERT_EQ(length, 13u);
             out.width = static_cast<int>(be32(data));
@@ -77,6 +85,7 @@ void decode(const fs::path& path, Decoded& out) {
             out.srgb.assign(data, data + length);
         } else if (type == "IDAT") {
             idat.insert(idat.end(), data, data + length);
+            out.idatSizes.push_back(length);
         }
         at += 12 + length;
     }
@@ -290,6 +299,115 @@ TEST(Png, WriteIntoMissingFolderIsRuntimeError) {
         EXPECT_NE(std::string(e.what()).find(folder.string()), std::string::npos) << e.what();
     }
     EXPECT_TRUE(dir.list().empty());
+}
+
+// Opaque random colours: about as incompressible as a preview gets, so a
+// 1024x512 one deflates to more than 1 MiB, the size of an IDAT chunk.
+Image noiseImage(int width, int height) {
+    Image image(width, height);
+    std::uint32_t state = 777;
+    for (float& v : image.rgba) {
+        state = state * 1664525u + 1013904223u;
+        v = static_cast<float>(state >> 8) / 16777216.0f;
+    }
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4)
+        image.rgba[i] = 1.0f;
+    return image;
+}
+
+PngBytes fileBytes(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Only the image and its colour space: no time stamp or text, which would make
+// a rerun's file differ. gAMA and cHRM are sRGB's, for decoders that ignore
+// sRGB; IDAT chunks hold 1 MiB each but the last.
+TEST(Png, ChunksAreTheColourSpaceAndTheImageOnly) {
+    TempDir dir;
+    const fs::path path = dir / "noise.png";
+    writePng(path, noiseImage(1024, 512));
+    Decoded png;
+    ASSERT_NO_FATAL_FAILURE(decode(path, png));
+    ASSERT_GE(png.idatSizes.size(), 2u) << "the image should need more than one IDAT";
+    std::vector<std::string> expected = {"IHDR", "sRGB", "gAMA", "cHRM"};
+    expected.insert(expected.end(), png.idatSizes.size(), "IDAT");
+    expected.push_back("IEND");
+    EXPECT_EQ(png.chunkTypes, expected);
+    for (std::size_t i = 0; i + 1 < png.idatSizes.size(); ++i)
+        EXPECT_EQ(png.idatSizes[i], 1u << 20) << "IDAT " << i;
+    EXPECT_LE(png.idatSizes.back(), 1u << 20);
+    ASSERT_EQ(png.payloads["gAMA"].size(), 4u);
+    EXPECT_EQ(be32(png.payloads["gAMA"].data()), 45455u);
+    ASSERT_EQ(png.payloads["cHRM"].size(), 32u);
+    const std::uint32_t chrm[] = {31270, 32900, 64000, 33000, 30000, 60000, 15000, 6000};
+    for (int i = 0; i < 8; ++i)
+        EXPECT_EQ(be32(png.payloads["cHRM"].data() + 4 * i), chrm[i]) << "cHRM value " << i;
+    EXPECT_EQ(png.filters, png.bestFilters);
+}
+
+TEST(Png, SameImageSameBytes) {
+    TempDir dir;
+    Image image = noiseImage(300, 200);
+    writePng(dir / "a.png", image);
+    writePng(dir / "b.png", image);
+    EXPECT_EQ(fileBytes(dir / "a.png"), fileBytes(dir / "b.png"));
+    // Control: the comparison sees a single pixel's change.
+    image.pixel(150, 100)[0] = 0.0f;
+    writePng(dir / "c.png", image);
+    EXPECT_NE(fileBytes(dir / "a.png"), fileBytes(dir / "c.png"));
+}
+
+// Wider than libpng's default limit of a million pixels a side; PNG allows
+// 2^31 - 1.
+TEST(Png, WritesAMillionPixelWideRow) {
+    TempDir dir;
+    const int width = 1'000'001;
+    Image image(width, 1);
+    setPixel(image, width - 1, 0, 1.0f, 0.0f, 0.0f, 1.0f);
+    const fs::path path = dir / "wide.png";
+    writePng(path, image);
+    Decoded png;
+    ASSERT_NO_FATAL_FAILURE(decode(path, png));
+    ASSERT_EQ(png.width, width);
+    EXPECT_EQ(png.pixel(width - 1, 0)[0], 255);
+    EXPECT_EQ(png.pixel(width - 1, 0)[3], 255);
+    EXPECT_EQ(png.pixel(width - 2, 0)[3], 0);
+}
+
+// For a death test's child: writes `image` with files limited to `limit`
+// bytes (RLIMIT_FSIZE with its signal ignored, so a write past it fails with
+// EFBIG as one on a full disk fails with ENOSPC). Exits 0 when writePng
+// succeeds, 1 when it throws RuntimeError (message on stderr), 2 otherwise.
+[[noreturn]] void writeWithFileSizeLimit(const fs::path& path, const Image& image, rlim_t limit) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit small{limit, limit};
+    if (setrlimit(RLIMIT_FSIZE, &small) != 0) std::_Exit(3);
+    try {
+        writePng(path, image);
+    } catch (const RuntimeError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        std::_Exit(1);
+    } catch (...) {
+        std::_Exit(2);
+    }
+    std::_Exit(0);
+}
+
+// A write that fails part way (here past the first 1 MiB IDAT, while rows are
+// still being encoded) names the file and the system's reason, as for a full
+// disk, and leaves neither the file nor its temporary.
+TEST(Png, AFailedWriteNamesTheCauseAndLeavesNoFile) {
+    TempDir dir;
+    const Image noise = noiseImage(1024, 512);
+    const std::string reason = std::string("\\(") + std::strerror(EFBIG) + "\\)";
+    EXPECT_EXIT(writeWithFileSizeLimit(dir / "noise.png", noise, 64 * 1024),
+                testing::ExitedWithCode(1), "cannot write .*noise\\.png " + reason);
+    EXPECT_TRUE(dir.list().empty());
+    // Control: under the same limit a small image is written.
+    EXPECT_EXIT(writeWithFileSizeLimit(dir / "small.png", noiseImage(8, 8), 64 * 1024),
+                testing::ExitedWithCode(0), "");
+    EXPECT_EQ(dir.list(), std::vector<std::string>{"small.png"});
 }
 
 } // namespace
