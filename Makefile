@@ -75,12 +75,13 @@ fuzz:
 	@bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 # Each file compiled on its own: what the unity build's batches could hide
-# (an include a file needs but gets from its batch) fails here. Unoptimized,
-# since only compiling matters; nothing of it is run.
+# (an include a file needs but gets from its batch) fails here. The build
+# type "Check" adds no flags (no optimisation, no debug information): only
+# compiling matters, nothing of it is run.
 FILES_BUILD ?= build-files
 build-files: deps
 	@if [ ! -f $(FILES_BUILD)/build.ninja ]; then \
-	  cmake -S . -B $(FILES_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG=-O0 \
+	  cmake -S . -B $(FILES_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Check \
 	    -DCUTAWAY_UNITY=OFF >/dev/null; fi
 	@cmake --build $(FILES_BUILD) --parallel $(JOBS)
 
