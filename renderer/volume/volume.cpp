@@ -1,6 +1,7 @@
 #include "volume/volume.hpp"
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "volume/io_util.hpp"
 
 #include <cmath>
@@ -157,7 +158,7 @@ bool endsWith(const std::string& text, std::string_view suffix) {
 } // namespace
 
 Volume readVolume(const std::filesystem::path& path) {
-    detail::regularFileSize(path); // "no such file" before any talk of extensions
+    (void)InputFile(path, "volume"); // "no such file" before any talk of extensions
     const std::string name = detail::toLower(path.filename().string());
     if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return readNrrd(path);
     if (endsWith(name, ".nii") || endsWith(name, ".nii.gz")) return readNifti(path);
