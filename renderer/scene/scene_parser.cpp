@@ -149,7 +149,8 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     scene.baseDir = baseDir;
     JsonReader root(document, diagnostics);
     if (const nlohmann::json* version = root.find("version")) {
-        if (!(version->is_number_integer() && version->get<std::int64_t>() == 1)) {
+        // 1.0 is 1 too (JSON Schema counts a number with a zero fraction an integer).
+        if (!(version->is_number() && version->get<double>() == 1.0)) {
             root.error("version",
                        "unsupported version: expected 1, got " + describeValue(*version));
         }

@@ -124,6 +124,21 @@ TEST(SceneInput, SetValuesMeetTheLimitsOfSceneFiles) {
                            "...: expected /json/pointer=VALUE, e.g. /camera/orbit/azimuth=90");
 }
 
+TEST(SceneInput, VersionOnePointZeroIsOne) {
+    nlohmann::json document = test::minimalScene();
+    document["version"] = 1.0;
+    EXPECT_EQ(test::parseError(document), "");
+    document["version"] = 1.5;
+    EXPECT_EQ(test::parseError(document),
+              "scene.json: /version: unsupported version: expected 1, got 1.5");
+    document["version"] = 2;
+    EXPECT_EQ(test::parseError(document),
+              "scene.json: /version: unsupported version: expected 1, got 2");
+    document["version"] = "1";
+    EXPECT_EQ(test::parseError(document),
+              "scene.json: /version: unsupported version: expected 1, got \"1\"");
+}
+
 TEST(SceneInput, InputPathsWithNulOrPastPathMaxAreRefused) {
     nlohmann::json document = nlohmann::json::parse(R"({"version": 1, "volume": {}})");
     document["volume"]["file"] = std::string("scan\0.nrrd", 10);
