@@ -15,6 +15,7 @@
 #include "gpu/context.hpp"
 #include "interrupt.hpp"
 #include "job/export_volume.hpp"
+#include "job/output_paths.hpp"
 #include "job/render_job.hpp"
 #include "job/scene_check.hpp"
 #include "job/sequence.hpp"
@@ -189,10 +190,10 @@ int runExport(const ExportArgs& args) {
         if (!scene.labels)
             throw cutaway::InputError("--labels-output " + args.labelsOutput + ": " + args.scene +
                                       " has no /labels");
-        if (std::filesystem::weakly_canonical(labelsOut) == std::filesystem::weakly_canonical(out))
-            throw cutaway::InputError("--labels-output " + args.labelsOutput +
-                                      ": the same file as -o");
     }
+    cutaway::job::checkExportPaths(
+        scene, out,
+        args.labelsOutput.empty() ? std::nullopt : std::optional<std::filesystem::path>(labelsOut));
     const cutaway::job::Exported exported = [&] {
         try {
             return cutaway::job::exportVolume(scene, !args.labelsOutput.empty());

@@ -1,7 +1,9 @@
 #include "io/atomic_file.hpp"
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -9,6 +11,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <string>
+#include <sys/stat.h>
 #include <system_error>
 #include <unistd.h>
 
@@ -99,24 +102,86 @@ fs::path followLinks(const fs::path& path) {
         if (ec) return p;
         p = (next.is_absolute() ? next : p.parent_path() / next).lexically_normal();
     }
-    throw InputError("cannot write " + path.string() + ": too many levels of symbolic links");
+    throw InputError("cannot write " + printable(path.string()) +
+                     ": too many levels of symbolic links");
 }
 
 void checkReplaceable(const fs::path& target, const fs::path& requested) {
-    std::error_code ec;
-    const fs::file_status status = fs::status(target, ec);
-    if (ec || !fs::exists(status) || fs::is_regular_file(status)) return;
-    const char* what = fs::is_directory(status)        ? "a folder"
-                       : fs::is_character_file(status) ? "a character device"
-                       : fs::is_block_file(status)     ? "a block device"
-                       : fs::is_fifo(status)           ? "a named pipe"
-                       : fs::is_socket(status)         ? "a socket"
-                                                       : "not a regular file";
-    throw InputError("cannot write " + requested.string() + ": it exists and is " + what +
+    struct stat status {};
+    if (::stat(target.c_str(), &status) != 0 || S_ISREG(status.st_mode)) return;
+    throw InputError("cannot write " + printable(requested.string()) + ": it exists and is " +
+                     nonRegularKind(status.st_mode) +
                      ", which cutaway does not replace; name a regular file");
 }
 
+// What the system would refuse about the folder `target` goes in, found
+// before anything renders: a file where a folder should be, a link loop, a
+// name too long. A folder that does not exist yet is made by the writer.
+void checkFolderOf(const fs::path& target, const fs::path& requested) {
+    const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    struct stat status {};
+    const bool found = ::stat(folder.c_str(), &status) == 0;
+    const int err = found ? 0 : errno;
+    if (found && S_ISDIR(status.st_mode)) return;
+    if (found || err == ENOTDIR || err == ELOOP || err == ENAMETOOLONG)
+        throw InputError("cannot write " + printable(requested.string()) + ": folder " +
+                         printable(folder.string()) + ": " +
+                         (found ? std::string("it is ") +
+                                      (S_ISREG(status.st_mode) ? "a regular file"
+                                                               : nonRegularKind(status.st_mode)) +
+                                      ", not a folder"
+                                : std::string(std::strerror(err))));
+}
+
 } // namespace
+
+std::string printable(std::string_view text) {
+    static const char* kHex = "0123456789abcdef";
+    std::string out;
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte >= 0x20 && byte != 0x7F) {
+            out += c;
+            continue;
+        }
+        out += "\\x";
+        out += kHex[byte >> 4];
+        out += kHex[byte & 15];
+    }
+    return out;
+}
+
+fs::path writeTarget(const fs::path& requested) {
+    const std::string& text = requested.native();
+    constexpr std::size_t kLongestShown = 300; // of a path too long to write
+    const std::string shown = text.size() > kLongestShown
+                                  ? printable(text.substr(0, kLongestShown)) + "..."
+                                  : printable(text);
+    const fs::path name = requested.filename();
+    if (name.empty() || name == "." || name == "..")
+        throw InputError("cannot write " + shown + ": the path names a folder, not a file");
+    const auto control = [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7F; };
+    if (std::any_of(text.begin(), text.end(), control))
+        throw InputError("cannot write " + shown +
+                         ": the path holds a control character (shown as \\xNN)");
+    const fs::path target = followLinks(requested);
+    // The temporary's name must fit too: it is the longest path written.
+    const std::size_t extra = 1 + 5 + 7 + 1 + 20;
+    if (target.filename().string().size() > kLongestFileName)
+        throw InputError("cannot write " + shown + ": the file name is longer than the " +
+                         std::to_string(kLongestFileName) +
+                         " bytes cutaway can write (a folder holds names of 255, and each "
+                         "file is first written under a longer temporary name)");
+    for (const fs::path& path : {requested, target}) {
+        if (path.native().size() + extra >= PATH_MAX)
+            throw InputError("cannot write " + shown + ": the path is longer than the " +
+                             std::to_string(PATH_MAX - 1 - extra) +
+                             " bytes cutaway can write (PATH_MAX, with the temporary's name)");
+    }
+    checkFolderOf(target, requested);
+    checkReplaceable(target, requested);
+    return target;
+}
 
 void removeTemporariesNow() noexcept {
     for (Slot& slot : g_slots) {
@@ -126,11 +191,7 @@ void removeTemporariesNow() noexcept {
 
 void writeAtomically(const fs::path& requested,
                      const std::function<void(const fs::path& tmp)>& write) {
-    if (requested.filename().empty()) {
-        throw RuntimeError("cannot write " + requested.string() + ": the path names no file");
-    }
-    const fs::path target = followLinks(requested);
-    checkReplaceable(target, requested);
+    const fs::path target = writeTarget(requested);
     const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     // Checked up front so the message names the folder rather than whatever
     // the writer (OpenEXR, an ofstream) reports about the temporary name.

@@ -9,6 +9,9 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace cutaway {
 
@@ -17,11 +20,22 @@ namespace cutaway {
 /// must still fit the 255 bytes a folder entry holds on Linux file systems.
 inline constexpr std::size_t kLongestFileName = 255 - (1 + 5 + 7 + 1 + 20);
 
+/// `text` with every control character written as \xNN, for messages.
+std::string printable(std::string_view text);
+
+/// The file writeAtomically(requested) writes: `requested`, or the file a
+/// symbolic link there names. Throws InputError "cannot write REQUESTED:
+/// ..." when the path names no file (it ends in a slash, "." or ".."), holds
+/// a control character, is longer than the system takes (PATH_MAX with the
+/// temporary's name; a file name past kLongestFileName), its links loop, a
+/// folder on its way is not one, or it exists and is not a regular file.
+/// Render and validate check output paths with it before anything renders.
+std::filesystem::path writeTarget(const std::filesystem::path& requested);
+
 /// Calls write(tmp) with a temporary path next to `target`, then renames it to
-/// `target`. Throws InputError naming the target when it exists and is not a
-/// regular file, RuntimeError when the folder is not writable or the rename
-/// fails; rethrows whatever write() throws, after
-/// removing the temporary.
+/// `target`. Throws InputError naming the target when writeTarget refuses it,
+/// RuntimeError when the folder is not writable or the rename fails;
+/// rethrows whatever write() throws, after removing the temporary.
 void writeAtomically(const std::filesystem::path& target,
                      const std::function<void(const std::filesystem::path& tmp)>& write);
 

@@ -115,14 +115,8 @@ struct SequenceSummary {
 /// The frames this run visits, in order.
 std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& options);
 
-/// Checks the run's output paths before anything is rendered; throws
-/// InputError naming -o or the scene's /output/pattern when the pattern has
-/// no frame number (#### or %04d) but the run visits several frames (each
-/// would replace the last), when an EXR path is its own PNG preview (a
-/// pattern ending in .png), or when a path exists and is not a regular file.
-void checkOutputPaths(const Scene& scene, const SequenceOptions& options);
-
-/// Renders and writes the frames. Per-frame errors are reported through
+/// Renders and writes the frames, once checkOutputPaths (output_paths.hpp)
+/// passes. Per-frame errors are reported through
 /// onFrame and counted; a frame interrupted by stopRequested is discarded
 /// (never written). A frame whose files cannot be written (disk full) fails
 /// and ends the run: its temporaries are removed, earlier frames stay whole,

@@ -372,4 +372,22 @@ Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name) 
     return readNrrdStream(in, bytes.size(), name, std::nullopt);
 }
 
+std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path) {
+    std::vector<std::filesystem::path> files{path};
+    const std::string name = detail::toLower(path.filename().string());
+    if (!name.ends_with(".nrrd") && !name.ends_with(".nhdr")) return files;
+    try {
+        InputFile file(path, "volume");
+        bool endedByBlankLine = false;
+        const detail::NrrdFields f = readNrrdHeader(file.stream(), path.string(), endedByBlankLine);
+        if (f.dataFile) {
+            const std::filesystem::path data(std::string(trim(*f.dataFile)));
+            files.push_back(data.is_relative() ? path.parent_path() / data : data);
+        }
+    } catch (const InputError&) {
+        // Reading the volume says what is wrong with it.
+    }
+    return files;
+}
+
 } // namespace cutaway

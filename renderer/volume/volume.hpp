@@ -100,6 +100,10 @@ Volume readVolume(const std::filesystem::path& path);
 Volume readNrrd(const std::filesystem::path& path);
 Volume readNifti(const std::filesystem::path& path);
 Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
+/// The files reading the volume `path` reads: the file itself and, for a
+/// detached NRRD header, its data file. A header that cannot be read gives
+/// the file alone (reading it then says what is wrong).
+std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path);
 /// The NRRD and NIfTI readers over a file's bytes already in memory (not
 /// copied); `name` stands for the file in messages. A NRRD header read this way
 /// cannot name a detached data file (there is no folder to find it in).

@@ -1,0 +1,92 @@
+// What writeAtomically() refuses before it writes (writeTarget: the check
+// render and validate share), and files compared as files.
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_file.hpp"
+#include "temp_dir.hpp"
+
+#include <climits>
+#include <fstream>
+#include <gtest/gtest.h>
+#include <string>
+#include <unistd.h>
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+std::string refusal(const fs::path& path) {
+    try {
+        writeTarget(path);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(WriteTarget, PathsNoWriteCouldSucceedAreRefusedUpFront) {
+    TempDir dir;
+    // A folder, not a file: "newdir/" was refused only once the frame was rendered.
+    for (const fs::path& path : {dir / "newdir/", dir / ".", dir / "..", fs::path("")})
+        EXPECT_NE(refusal(path).find("the path names a folder, not a file"), std::string::npos)
+            << path;
+    // A control character: the system would cut the name at a NUL.
+    const std::string nul = (dir / "shot").string() + std::string(1, '\0') + "_0001.exr";
+    EXPECT_EQ(refusal(nul), "cannot write " + (dir / "shot").string() +
+                                "\\x00_0001.exr: the path holds a control character (shown as "
+                                "\\xNN)");
+    EXPECT_NE(refusal(dir / "a\nb.exr").find("a\\x0ab.exr: the path holds a control character"),
+              std::string::npos);
+    // Longer than PATH_MAX (with the temporary's name).
+    std::string deep = dir.path().string();
+    while (deep.size() < PATH_MAX)
+        deep += "/abcdefgh";
+    EXPECT_NE(refusal(deep + "/f.exr").find("bytes cutaway can write (PATH_MAX"),
+              std::string::npos);
+    // A name a folder entry cannot hold with the temporary's additions.
+    EXPECT_NE(refusal(dir / std::string(kLongestFileName + 1, 'n')).find("file name is longer"),
+              std::string::npos);
+    EXPECT_EQ(refusal(dir / std::string(kLongestFileName, 'n')), "");
+    // Links that loop; a regular file where a folder must be.
+    fs::create_symlink(dir / "loop1", dir / "loop2");
+    fs::create_symlink(dir / "loop2", dir / "loop1");
+    EXPECT_NE(refusal(dir / "loop1").find("too many levels of symbolic links"), std::string::npos);
+    EXPECT_NE(refusal(dir / "loop1" / "f.exr").find("folder"), std::string::npos);
+    std::ofstream(dir / "file") << "x";
+    EXPECT_NE(refusal(dir / "file" / "f.exr").find("it is a regular file, not a folder"),
+              std::string::npos);
+    // The controls: a new file in a folder that does not exist yet, an existing file.
+    EXPECT_EQ(refusal(dir / "new" / "deeper" / "f.exr"), "");
+    EXPECT_EQ(writeTarget(dir / "file"), dir / "file");
+    // writeAtomically refuses the same paths, before calling its writer.
+    bool called = false;
+    EXPECT_THROW(writeAtomically(dir / "newdir/", [&](const fs::path&) { called = true; }),
+                 InputError);
+    EXPECT_FALSE(called);
+}
+
+TEST(WriteTarget, FilesAreComparedAsFilesNotAsText) {
+    TempDir dir;
+    std::ofstream(dir / "vol.nrrd") << "x";
+    fs::create_directories(dir / "sub");
+    fs::create_directory_symlink(dir / "sub", dir / "link");
+    fs::create_symlink(dir / "vol.nrrd", dir / "vol_link.nrrd");
+    // An existing file: by device and inode, whatever the spelling.
+    const auto vol = fileIdOf(dir / "vol.nrrd");
+    ASSERT_TRUE(vol);
+    EXPECT_TRUE(vol->name.empty());
+    EXPECT_EQ(fileIdOf(dir / "sub" / ".." / "vol.nrrd"), vol);
+    EXPECT_EQ(fileIdOf(dir / "vol_link.nrrd"), vol);
+    // A new file: its folder's device and inode and its name.
+    EXPECT_EQ(fileIdOf(dir / "sub" / "new.nrrd"), fileIdOf(dir / "link" / "new.nrrd"));
+    EXPECT_EQ(fileIdOf(dir / "sub" / "new.nrrd")->name, "new.nrrd");
+    // The controls: other names, other folders.
+    EXPECT_NE(fileIdOf(dir / "sub" / "new.nrrd"), fileIdOf(dir / "sub" / "other.nrrd"));
+    EXPECT_NE(fileIdOf(dir / "sub" / "new.nrrd"), fileIdOf(dir / "new.nrrd"));
+    EXPECT_FALSE(fileIdOf(dir / "none" / "new.nrrd"));
+}
+
+} // namespace
+} // namespace cutaway
