@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cerrno>
 #include <climits>
+#include <csignal>
 #include <cstring>
 #include <fcntl.h>
 #include <string>
@@ -21,15 +22,31 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Distinguishes temporaries of concurrent calls within one process; the pid
-// distinguishes processes writing into the same folder.
+// Distinguishes temporaries of concurrent calls within one process; the host
+// and the pid distinguish processes writing into the same folder.
 std::atomic<unsigned long> g_tmpCounter{0};
+
+// This host's name as temporaries carry it (atomic_file.hpp).
+const std::string& hostName() {
+    static const std::string name = [] {
+        char buffer[256] = {};
+        if (::gethostname(buffer, sizeof buffer - 1) != 0 || buffer[0] == '\0')
+            return std::string("localhost");
+        std::string host(buffer, ::strnlen(buffer, kLongestHostName));
+        for (char& c : host)
+            if (c == '/' || static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '_';
+        return host;
+    }();
+    return name;
+}
 
 fs::path temporaryPathFor(const fs::path& target) {
     // Built by appending: GCC 12 warns falsely (-Wrestrict) on "literal" + std::string.
     std::string name = ".";
     name += target.filename().string();
     name += ".tmp-";
+    name += hostName();
+    name += '-';
     name += std::to_string(static_cast<long>(::getpid()));
     name += '-';
     name += std::to_string(g_tmpCounter.fetch_add(1));
@@ -166,7 +183,7 @@ fs::path writeTarget(const fs::path& requested) {
                          ": the path holds a control character (shown as \\xNN)");
     const fs::path target = followLinks(requested);
     // The temporary's name must fit too: it is the longest path written.
-    const std::size_t extra = 1 + 5 + 7 + 1 + 20;
+    const std::size_t extra = 1 + 5 + kLongestHostName + 1 + 7 + 1 + 20;
     if (target.filename().string().size() > kLongestFileName)
         throw InputError("cannot write " + shown + ": the file name is longer than the " +
                          std::to_string(kLongestFileName) +
@@ -218,6 +235,46 @@ void writeAtomically(const fs::path& requested,
         throw RuntimeError("cannot write " + requested.string() + ": renaming " + tmp.string() +
                            " over it failed (" + ec.message() + ")");
     }
+}
+
+namespace {
+
+bool allDigits(std::string_view text) {
+    return !text.empty() &&
+           std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// The pid of `file` when it is a temporary of one of `names` written on this
+// host (".NAME.tmp-HOST-PID-N"), else 0.
+long temporaryWriter(const std::string& file, const std::set<std::string>& names) {
+    const std::string marker = ".tmp-" + hostName() + "-";
+    const std::size_t at = file.rfind(marker);
+    if (file.size() < 2 || file[0] != '.' || at == std::string::npos || at < 2) return 0;
+    if (!names.contains(file.substr(1, at - 1))) return 0;
+    const std::string_view rest = std::string_view(file).substr(at + marker.size());
+    const std::size_t dash = rest.find('-');
+    if (dash == std::string_view::npos || dash > 7) return 0;
+    const std::string_view pid = rest.substr(0, dash);
+    if (!allDigits(pid) || !allDigits(rest.substr(dash + 1))) return 0;
+    return std::stol(std::string(pid));
+}
+
+} // namespace
+
+std::vector<fs::path> removeStaleTemporaries(const fs::path& folder,
+                                             const std::set<std::string>& names) {
+    std::vector<fs::path> removed;
+    std::error_code ec;
+    const fs::path where = folder.empty() ? fs::path(".") : folder;
+    for (fs::directory_iterator it(where, ec), end; !ec && it != end; it.increment(ec)) {
+        const long pid = temporaryWriter(it->path().filename().string(), names);
+        // Its writer provably gone: no process of that pid on this host.
+        if (pid <= 0 || ::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;
+        std::error_code status;
+        if (!fs::is_regular_file(fs::symlink_status(it->path(), status))) continue;
+        if (::unlink(it->path().c_str()) == 0) removed.push_back(it->path());
+    }
+    return removed;
 }
 
 } // namespace cutaway

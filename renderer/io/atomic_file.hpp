@@ -9,16 +9,26 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace cutaway {
 
-/// The longest file name writeAtomically() takes: the temporary's name adds
-/// "." and ".tmp-PID-N" (a Linux pid has at most 7 digits, N at most 20) and
-/// must still fit the 255 bytes a folder entry holds on Linux file systems.
-inline constexpr std::size_t kLongestFileName = 255 - (1 + 5 + 7 + 1 + 20);
+/// A temporary's name is ".NAME.tmp-HOST-PID-N": the target's name, the
+/// host and the process that writes it (shards of one sequence run on many
+/// hosts over one shared file system, each process numbering its own from
+/// 0), so that a temporary left by a killed process can be told from one
+/// being written (removeStaleTemporaries). HOST is the host name (at most
+/// 64 bytes on Linux; a '/' or a control character in it becomes '_').
+inline constexpr std::size_t kLongestHostName = 64;
+
+/// The longest file name writeAtomically() takes: its temporary's name adds
+/// "." and ".tmp-HOST-PID-N" (a host name of at most 64 bytes, a Linux pid
+/// of at most 7 digits, N of at most 20) and must still fit the 255 bytes a
+/// folder entry holds on Linux file systems.
+inline constexpr std::size_t kLongestFileName = 255 - (1 + 5 + kLongestHostName + 1 + 7 + 1 + 20);
 
 /// `text` with every control character written as \xNN, for messages.
 std::string printable(std::string_view text);
@@ -48,5 +58,13 @@ inline constexpr int kTrackedTemporaries = 32;
 /// to end the process calls it so that no temporary outlives the process.
 /// The writes it interrupts then fail, so call it only on the way out.
 void removeTemporariesNow() noexcept;
+
+/// Removes the temporaries of `names` (files of `folder`, as writeTarget
+/// gives them) that a killed process left: only those written on this host
+/// by a process that is gone (kill(pid, 0) fails with ESRCH). Another host's
+/// temporaries (a shared file system), a live process's and files of other
+/// names are never touched. Returns the paths removed.
+std::vector<std::filesystem::path> removeStaleTemporaries(const std::filesystem::path& folder,
+                                                          const std::set<std::string>& names);
 
 } // namespace cutaway

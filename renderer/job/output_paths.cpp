@@ -112,6 +112,26 @@ void checkOutputPaths(const Scene& scene, const SequenceOptions& options) {
     }
 }
 
+std::vector<fs::path> removeStaleTemporariesOfRun(const Scene& scene,
+                                                  const SequenceOptions& options) {
+    const std::string& pattern = options.overrides.outputPattern.value_or(scene.output.pattern);
+    const bool png = scene.output.png || options.overrides.png;
+    std::map<fs::path, std::set<std::string>> byFolder; // the files written, by folder
+    for (const int frame : framesToRender(scene, options)) {
+        const fs::path exr = expandPattern(pattern, frame);
+        for (const fs::path& path : png ? std::vector{exr, previewPath(exr)} : std::vector{exr}) {
+            const fs::path target = writeTarget(path); // where its temporary would be
+            byFolder[target.parent_path()].insert(target.filename().string());
+        }
+    }
+    std::vector<fs::path> removed;
+    for (const auto& [folder, names] : byFolder) {
+        const std::vector<fs::path> gone = removeStaleTemporaries(folder, names);
+        removed.insert(removed.end(), gone.begin(), gone.end());
+    }
+    return removed;
+}
+
 void checkExportPaths(const Scene& scene, const fs::path& volume,
                       const std::optional<fs::path>& labels) {
     const std::vector<RunInput> inputs = runInputs(scene);

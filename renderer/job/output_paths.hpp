@@ -44,6 +44,13 @@ void checkNotAnInput(const std::filesystem::path& output, const std::vector<RunI
 /// file), or when it is a file the run reads.
 void checkOutputPaths(const Scene& scene, const SequenceOptions& options);
 
+/// For --skip-existing: removes the temporaries of this run's frames (its
+/// shard's, in its range) that a killed run left, as removeStaleTemporaries
+/// (io/atomic_file.hpp) does: only this host's, of processes that are gone.
+/// Returns the paths removed.
+std::vector<std::filesystem::path> removeStaleTemporariesOfRun(const Scene& scene,
+                                                               const SequenceOptions& options);
+
 /// `cutaway export`'s files: `volume` (-o) and, when given, `labels`
 /// (--labels-output) must be writable paths, not files the run of `scene`
 /// reads, and not the same file as each other.

@@ -149,6 +149,8 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
     const auto runStart = Clock::now();
     checkOutputPaths(scene, options);
     SequenceSummary summary;
+    if (options.skipExisting)
+        summary.removedTemporaries = removeStaleTemporariesOfRun(scene, options);
     const auto stop = [&] { return options.stopRequested && options.stopRequested(); };
     const std::vector<int> frames = framesToRender(scene, options);
     std::unique_ptr<FrameRenderer> renderer; // made on the first frame that needs it

@@ -84,8 +84,10 @@ struct FrameEvent {
 struct SequenceOptions {
     std::optional<FrameRange> frames; ///< default: the scene's /animation/frames
     Shard shard;                      ///< this run renders frames with f mod count == index
-    bool skipExisting = false;        ///< leave frames whose files exist untouched
-    bool failFast = false;            ///< stop at the first failed frame
+    /// Leave frames whose files exist untouched, and remove the temporaries
+    /// of this run's frames that a killed run left.
+    bool skipExisting = false;
+    bool failFast = false; ///< stop at the first failed frame
     RenderOverrides overrides;
     /// Frames whose files may be written at once while later frames render,
     /// up to kMostWritersAllowed; 0: writesInFlight(the machine's cores, the
@@ -104,6 +106,9 @@ struct SequenceSummary {
     bool writeFailed = false;      ///< a frame's files could not be written: the run stopped there
     bool resourceExceeded = false; ///< a device limit or the memory budget stopped the run
     int volumeUploads = 0; ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
+    /// With skipExisting: the temporaries of this run's frames that a killed
+    /// run left, removed (removeStaleTemporariesOfRun, output_paths.hpp).
+    std::vector<std::filesystem::path> removedTemporaries;
     std::vector<double> frameSeconds; ///< of rendered frames, as FrameEvent::seconds
     /// When each rendered frame's files were written, in seconds since the run
     /// began: the rate between the first and the last is the steady one, after

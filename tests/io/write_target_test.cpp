@@ -1,5 +1,6 @@
 // What writeAtomically() refuses before it writes (writeTarget: the check
-// render and validate share), and files compared as files.
+// render and validate share), what its temporaries are named, and which of
+// them removeStaleTemporaries() may remove.
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_file.hpp"
@@ -9,6 +10,7 @@
 #include <fstream>
 #include <gtest/gtest.h>
 #include <string>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace cutaway {
@@ -24,6 +26,24 @@ std::string refusal(const fs::path& path) {
         return e.what();
     }
     return "";
+}
+
+std::string host() {
+    char name[256] = {};
+    ::gethostname(name, sizeof name - 1);
+    return name;
+}
+
+// A pid that belonged to a process that has ended (and been waited for).
+long goneProcess() {
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    return child;
+}
+
+void touch(const fs::path& path) {
+    std::ofstream(path) << "partial";
 }
 
 TEST(WriteTarget, PathsNoWriteCouldSucceedAreRefusedUpFront) {
@@ -65,6 +85,48 @@ TEST(WriteTarget, PathsNoWriteCouldSucceedAreRefusedUpFront) {
     EXPECT_THROW(writeAtomically(dir / "newdir/", [&](const fs::path&) { called = true; }),
                  InputError);
     EXPECT_FALSE(called);
+}
+
+TEST(WriteTarget, TemporariesCarryTheHostAndTheProcess) {
+    TempDir dir;
+    fs::path seen;
+    writeAtomically(dir / "f.exr", [&](const fs::path& tmp) {
+        seen = tmp;
+        std::ofstream(tmp) << "x";
+    });
+    const std::string prefix = ".f.exr.tmp-" + host() + "-" + std::to_string(::getpid()) + "-";
+    EXPECT_EQ(seen.filename().string().rfind(prefix, 0), 0u) << seen;
+    EXPECT_EQ(seen.parent_path(), dir.path());
+}
+
+TEST(WriteTarget, OnlyThisHostsTemporariesOfGoneProcessesAreRemoved) {
+    TempDir dir;
+    const std::string me = host();
+    const std::string dead = std::to_string(goneProcess());
+    const std::string live = std::to_string(::getpid());
+    const std::vector<std::string> stale = {".f_0000.exr.tmp-" + me + "-" + dead + "-0",
+                                            ".f_0000.png.tmp-" + me + "-" + dead + "-7"};
+    const std::vector<std::string> kept = {
+        ".f_0000.exr.tmp-" + me + "-" + live + "-0",       // being written
+        ".f_0000.exr.tmp-other" + me + "-" + dead + "-0",  // another host's
+        ".f_0000.exr.tmp-" + me + ".other-" + dead + "-0", // another host's
+        ".f_0001.exr.tmp-" + me + "-" + dead + "-0",       // not a frame of this run
+        ".f_0000.exr.tmp-" + me + "-" + dead + "-x",       // not cutaway's naming
+        ".f_0000.exr.tmp-" + me + "-" + dead,              // not cutaway's naming
+        "f_0000.exr.tmp-" + me + "-" + dead + "-0",        // not cutaway's naming
+    };
+    for (const auto& names : {stale, kept})
+        for (const std::string& name : names)
+            touch(dir / name);
+    fs::create_directories(dir / (".f_0000.exr.tmp-" + me + "-" + dead + "-1")); // a folder
+    const std::vector<fs::path> removed =
+        removeStaleTemporaries(dir.path(), {"f_0000.exr", "f_0000.png"});
+    EXPECT_EQ(removed.size(), 2u);
+    for (const std::string& name : stale)
+        EXPECT_FALSE(fs::exists(dir / name)) << name;
+    for (const std::string& name : kept)
+        EXPECT_TRUE(fs::exists(dir / name)) << name;
+    EXPECT_TRUE(fs::is_directory(dir / (".f_0000.exr.tmp-" + me + "-" + dead + "-1")));
 }
 
 TEST(WriteTarget, FilesAreComparedAsFilesNotAsText) {
