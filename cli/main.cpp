@@ -9,7 +9,7 @@
 //   cutaway devices
 //
 // Exit codes: 0 success, 1 runtime failure, 2 bad input or usage;
-// 128 + signal when interrupted by SIGINT or SIGTERM.
+// 128 + signal when interrupted by SIGINT, SIGTERM, SIGHUP or SIGQUIT.
 #include "core/error.hpp"
 #include "core/process_memory.hpp"
 #include "gpu/context.hpp"
@@ -194,6 +194,7 @@ int runExport(const ExportArgs& args) {
     cutaway::job::checkExportPaths(
         scene, out,
         args.labelsOutput.empty() ? std::nullopt : std::optional<std::filesystem::path>(labelsOut));
+    cutaway::cli::installEndingHandlers(); // no temporary outlives a signal
     const cutaway::job::Exported exported = [&] {
         try {
             return cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
@@ -283,6 +284,7 @@ int runValidate(const RenderArgs& args) {
 
 int main(int argc, char** argv) {
     cutaway::unmapLargeBlocksWhenFreed();
+    cutaway::cli::ignoreBrokenPipes();
     CLI::App app{"cutaway: illustrative volume manipulation, rendered to EXR"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("cutaway ") + CUTAWAY_VERSION);
