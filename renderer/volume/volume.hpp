@@ -78,12 +78,19 @@ struct Volume {
     static Volume allocate(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing = glm::dvec3(1.0));
 };
 
-/// Minimum and maximum physical value (NaN voxels ignored; an all-NaN volume gives {0, 0}).
+/// Minimum and maximum physical value of the finite voxels (NaN and infinite
+/// ones are left out; a volume with none finite gives {0, 0}).
 struct ValueRange {
     double min = 0.0;
     double max = 0.0;
 };
 ValueRange valueRange(const Volume& volume);
+
+/// How many voxels are NaN or infinite (only floating-point volumes hold such).
+std::size_t nonFiniteCount(const Volume& volume);
+
+/// Gives every NaN or infinite voxel the physical value `value`; returns how many.
+std::size_t replaceNonFinite(Volume& volume, double value);
 
 /// Layout of a headerless raw file.
 struct RawLayout {
