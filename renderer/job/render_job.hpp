@@ -115,6 +115,9 @@ public:
     /// What the renders since the last call derived, one line each (e.g. the
     /// Otsu threshold of surface alignment and its bake time).
     std::vector<std::string> takeNotes() { return m_renderer.takeNotes(); }
+    /// What the last frame derived, without times: the feature fields it
+    /// read, the same lines for every frame that reads the same fields.
+    std::vector<std::string> fieldsInUse() const { return m_renderer.fieldsInUse(); }
     /// What in the scenes since the last call is likely a mistake, once per
     /// run: an operator whose box does not reach the volume moves nothing.
     std::vector<std::string> takeWarnings() { return std::exchange(m_warnings, {}); }

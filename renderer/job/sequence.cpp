@@ -249,8 +249,12 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                               {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
                               {"cutaway/version", CUTAWAY_VERSION},
                               {"cutaway/scene", recordedScene(frameScene).dump()}};
-            for (std::size_t n = 0; n < event.notes.size(); ++n)
-                exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
+            // The file records what the frame used, never when or how long
+            // (the bakes' times go to the terminal): files are the same
+            // whichever process, shard or rerun writes them.
+            const std::vector<std::string> used = renderer->fieldsInUse();
+            for (std::size_t n = 0; n < used.size(); ++n)
+                exr.attributes.push_back({"cutaway/note" + std::to_string(n), used[n]});
             std::future<double> write =
                 writeFrameFiles(event.exr, event.png, std::move(image), std::move(exr));
             pending.push_back(PendingWrite{std::move(event), renderSeconds, std::move(write)});

@@ -81,6 +81,7 @@ void FeatureFields::keepOnly(const std::vector<OperatorSpec>& specs, const GpuVo
         if (spec.alignment.mode != AlignmentMode::Axis)
             wanted.insert(describe(spec.alignment, volume).key);
     std::erase_if(m_fields, [&](const auto& field) { return !wanted.count(field.first); });
+    m_inUse.clear(); // a new frame
 }
 
 gpu::Image FeatureFields::indicatorTexture(const OperatorSpec& spec,
@@ -105,6 +106,8 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     if (id) *id = 0;
     if (a.mode == AlignmentMode::Axis) return m_none;
     const auto [k, note] = describe(a, volume);
+    const std::string inUse = spec.name + ": " + note;
+    if (std::find(m_inUse.begin(), m_inUse.end(), inUse) == m_inUse.end()) m_inUse.push_back(inUse);
     auto found = m_fields.find(k);
     if (found != m_fields.end()) {
         if (id) *id = found->second.id;
@@ -126,7 +129,7 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     char took[32];
     std::snprintf(took, sizeof took, "%.2f", seconds);
-    m_notes.push_back(spec.name + ": " + note + ", baked in " + took + " s");
+    m_notes.push_back(inUse + ", baked in " + took + " s");
     ++m_bakes;
     // The ranges' steps: DT in half millimetres, up to 63.5 mm (a deeper tau
     // falls back to the bricks: FieldRanges::resolves); M in hundredths.

@@ -77,6 +77,8 @@ public:
     void setCensus(bool on) { m_census = on; }
     /// Feature-field bakes since the last call, one line each (see FeatureFields).
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
+    /// The feature fields the last frame read (FeatureFields::fieldsInUse).
+    std::vector<std::string> fieldsInUse() const { return m_operators->features().fieldsInUse(); }
 
 private:
     /// The frame's targets: the meshes' where it has meshes, slicing's own
