@@ -14,6 +14,7 @@
 #include "core/process_memory.hpp"
 #include "gpu/context.hpp"
 #include "interrupt.hpp"
+#include "job/address_space.hpp"
 #include "job/export_volume.hpp"
 #include "job/output_paths.hpp"
 #include "job/render_job.hpp"
@@ -125,6 +126,11 @@ int runRender(const RenderArgs& args) {
     options.onFrame = [&](const job::FrameEvent& e) { progress.frame(e); };
     options.stopRequested = [] { return cutaway::cli::interruptSignal() != 0; };
 
+    // The driver and the image, before the device is made (the volume's
+    // share is checked once it is read: job/address_space.hpp).
+    cutaway::Scene first = scene;
+    job::applyOverrides(first, options.overrides);
+    job::checkAddressSpace(job::addressSpaceNeed(first));
     cutaway::gpu::ContextOptions contextOptions;
     contextOptions.deviceName = args.device;
     if (!args.memoryBudget.empty()) {
@@ -284,6 +290,7 @@ int runValidate(const RenderArgs& args) {
 
 int main(int argc, char** argv) {
     cutaway::unmapLargeBlocksWhenFreed();
+    cutaway::shareArenasUnderAddressLimit();
     cutaway::cli::ignoreBrokenPipes();
     CLI::App app{"cutaway: illustrative volume manipulation, rendered to EXR"};
     app.require_subcommand(1);
@@ -378,6 +385,14 @@ int main(int argc, char** argv) {
     } catch (const cutaway::InputError& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";
         return kExitInput;
+    } catch (const std::bad_alloc&) {
+        const auto limit = cutaway::job::addressSpaceLimit();
+        std::cerr << "cutaway: error: out of memory"
+                  << (limit ? " under the address-space limit (ulimit -v) of " +
+                                  std::to_string(*limit >> 10) + " KiB"
+                            : std::string())
+                  << "\n";
+        return kExitRuntime;
     } catch (const std::exception& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";
         return kExitRuntime;

@@ -1,6 +1,7 @@
 #include "job/render_job.hpp"
 
 #include "core/error.hpp"
+#include "job/address_space.hpp"
 #include "job/scene_check.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/slice_renderer.hpp"
@@ -290,6 +291,8 @@ Image FrameRenderer::render(const Scene& scene) {
     if (!m_volume || key != m_volumeKey) {
         m_volume.reset(); // free the old textures before making new ones
         FrameVolume fv = frameVolume(scene);
+        // Before the upload and the pipelines: past the limit, the driver fails inside.
+        checkAddressSpace(addressSpaceNeed(scene, fv.scan.get(), fv.labels.get()));
         const glm::ivec3 dims = fv.scan->dims;
         if (fv.nonFinite > 0 && m_warnedNonFinite.insert(key).second)
             m_warnings.push_back(nonFiniteWarning(scene, fv.nonFinite, fv.scan->voxelCount()));
@@ -305,6 +308,8 @@ Image FrameRenderer::render(const Scene& scene) {
         }
         m_volumeKey = key;
         ++m_uploads;
+    } else {
+        checkAddressSpace(addressSpaceNeed(scene, m_volume->scan.get(), m_volume->labels.get()));
     }
     warnOfOperatorsOutside(scene);
     Scene live = scene;
