@@ -261,9 +261,11 @@ TriangleMesh loadGltf(const std::filesystem::path& file) {
     return trianglesOf(parseFile(file, files), file.string());
 }
 
-TriangleMesh loadGltfBytes(std::string_view bytes, const std::string& name) {
+TriangleMesh loadGltfBytes(std::string_view bytes, const std::string& name,
+                           const std::optional<std::filesystem::path>& folder) {
     NamedFiles files;
     files.model = name;
+    files.folder = folder;
     return trianglesOf(parse(bytes, bytes.substr(0, 4) == "glTF", name, files), name);
 }
 

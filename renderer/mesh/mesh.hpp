@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -34,9 +35,11 @@ struct TriangleMesh {
 TriangleMesh loadGltf(const std::filesystem::path& file);
 
 /// The same for a model's bytes in memory (.glb when they start with its
-/// magic, else .gltf JSON), `name` standing for the file in messages. Such
-/// a model names no files: only data URIs and the .glb's own buffer are read.
-TriangleMesh loadGltfBytes(std::string_view bytes, const std::string& name);
+/// magic, else .gltf JSON), `name` standing for the file in messages. The
+/// files it names are read from `folder`; without one it names none (only
+/// data URIs and the .glb's own buffer are read).
+TriangleMesh loadGltfBytes(std::string_view bytes, const std::string& name,
+                           const std::optional<std::filesystem::path>& folder = std::nullopt);
 
 /// The files reading `file` reads: the model, then the buffers and images it
 /// names. Throws as loadGltf does when the model cannot be read.

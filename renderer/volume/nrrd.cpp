@@ -372,6 +372,13 @@ Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name) 
     return readNrrdStream(in, bytes.size(), name, std::nullopt);
 }
 
+Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name,
+                     const std::filesystem::path& dataFolder) {
+    detail::MemoryBuffer buffer(bytes);
+    std::istream in(&buffer);
+    return readNrrdStream(in, bytes.size(), name, dataFolder);
+}
+
 std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path) {
     std::vector<std::filesystem::path> files{path};
     const std::string name = detail::toLower(path.filename().string());

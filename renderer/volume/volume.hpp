@@ -115,6 +115,10 @@ std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path
 /// copied); `name` stands for the file in messages. A NRRD header read this way
 /// cannot name a detached data file (there is no folder to find it in).
 Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name);
+/// A detached NRRD header's bytes, its data file looked up in `dataFolder`
+/// (read as readNrrd reads it: io/input_file.hpp).
+Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name,
+                     const std::filesystem::path& dataFolder);
 Volume readNiftiBytes(std::span<const std::byte> bytes, const std::string& name);
 
 /// Writes an attached-header NRRD (raw or gzip encoding), native voxel type,
