@@ -151,6 +151,10 @@ int runRender(const RenderArgs& args) {
     if (summary.resourceExceeded) {
         std::fprintf(stderr, "cutaway: stopped: the device cannot render this scene (see above); "
                              "finished frames are whole\n");
+        if (const auto limit = job::addressSpaceLimit())
+            std::fprintf(stderr,
+                         "cutaway: note: under an address-space limit (ulimit -v) of %llu KiB\n",
+                         static_cast<unsigned long long>(*limit >> 10));
     }
     if (summary.writeFailed) {
         std::fprintf(stderr, "cutaway: stopped: a frame could not be written (see above); "
