@@ -131,23 +131,18 @@ void checkReplaceable(const fs::path& target, const fs::path& requested) {
                      ", which cutaway does not replace; name a regular file");
 }
 
-// What the system would refuse about the folder `target` goes in, found
-// before anything renders: a file where a folder should be, a link loop, a
-// name too long. A folder that does not exist yet is made by the writer.
+// What the system would refuse about the path to the folder `target` goes
+// in, found before anything renders: a link loop, a name too long. A folder
+// that does not exist yet is made by the writer (and a file in its way is
+// the writer's RuntimeError, as a read-only folder is).
 void checkFolderOf(const fs::path& target, const fs::path& requested) {
     const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     struct stat status {};
-    const bool found = ::stat(folder.c_str(), &status) == 0;
-    const int err = found ? 0 : errno;
-    if (found && S_ISDIR(status.st_mode)) return;
-    if (found || err == ENOTDIR || err == ELOOP || err == ENAMETOOLONG)
+    if (::stat(folder.c_str(), &status) == 0) return;
+    const int err = errno;
+    if (err == ELOOP || err == ENAMETOOLONG)
         throw InputError("cannot write " + printable(requested.string()) + ": folder " +
-                         printable(folder.string()) + ": " +
-                         (found ? std::string("it is ") +
-                                      (S_ISREG(status.st_mode) ? "a regular file"
-                                                               : nonRegularKind(status.st_mode)) +
-                                      ", not a folder"
-                                : std::string(std::strerror(err))));
+                         printable(folder.string()) + ": " + std::strerror(err));
 }
 
 } // namespace
