@@ -290,6 +290,28 @@ int runValidate(const RenderArgs& args) {
     return 0;
 }
 
+int runInfo(const std::string& file) {
+    std::fputs(cutaway::cli::describeVolume(cutaway::readVolume(file), file).c_str(), stdout);
+    return 0;
+}
+
+int runDevices() {
+    for (const auto& d : cutaway::gpu::listDevices())
+        std::printf("%s\n", d.c_str());
+    return 0;
+}
+
+// An allocation that failed: its size says little, an address-space limit much.
+int outOfMemory() {
+    const auto limit = cutaway::job::addressSpaceLimit();
+    std::cerr << "cutaway: error: out of memory"
+              << (limit ? " under the address-space limit (ulimit -v) of " +
+                              std::to_string(*limit >> 10) + " KiB"
+                        : std::string())
+              << "\n";
+    return kExitRuntime;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -375,28 +397,13 @@ int main(int argc, char** argv) {
         if (render->parsed()) return runRender(renderArgs);
         if (validate->parsed()) return runValidate(validateArgs);
         if (exportCommand->parsed()) return runExport(exportArgs);
-        if (info->parsed()) {
-            std::fputs(
-                cutaway::cli::describeVolume(cutaway::readVolume(infoFile), infoFile).c_str(),
-                stdout);
-            return 0;
-        }
-        if (devices->parsed()) {
-            for (const auto& d : cutaway::gpu::listDevices())
-                std::printf("%s\n", d.c_str());
-            return 0;
-        }
+        if (info->parsed()) return runInfo(infoFile);
+        if (devices->parsed()) return runDevices();
     } catch (const cutaway::InputError& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";
         return kExitInput;
     } catch (const std::bad_alloc&) {
-        const auto limit = cutaway::job::addressSpaceLimit();
-        std::cerr << "cutaway: error: out of memory"
-                  << (limit ? " under the address-space limit (ulimit -v) of " +
-                                  std::to_string(*limit >> 10) + " KiB"
-                            : std::string())
-                  << "\n";
-        return kExitRuntime;
+        return outOfMemory();
     } catch (const std::exception& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";
         return kExitRuntime;
