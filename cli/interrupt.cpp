@@ -9,8 +9,11 @@
 namespace cutaway::cli {
 namespace {
 
+constexpr int kEndingSignals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+
 std::atomic<int> g_signal{0};
 std::atomic<long long> g_firstNs{0};
+std::atomic<bool> g_endAtOnce{false};
 
 long long monotonicNs() {
     timespec now{};
@@ -18,8 +21,18 @@ long long monotonicNs() {
     return static_cast<long long>(now.tv_sec) * 1000000000LL + now.tv_nsec;
 }
 
+void endNow(int sig) {
+    removeTemporariesNow();
+    std::signal(sig, SIG_DFL);
+    std::raise(sig); // delivered when the handler returns
+}
+
 extern "C" void onSignal(int sig) {
     constexpr long long kSameRequestNs = 250000000LL;
+    if (g_endAtOnce.load()) {
+        endNow(sig);
+        return;
+    }
     const long long now = monotonicNs();
     int none = 0;
     if (g_signal.compare_exchange_strong(none, sig)) {
@@ -27,21 +40,36 @@ extern "C" void onSignal(int sig) {
         return;
     }
     if (now - g_firstNs.load() < kSameRequestNs) return;
-    removeTemporariesNow();
-    std::signal(sig, SIG_DFL);
-    std::raise(sig); // delivered when this handler returns
+    endNow(sig);
+}
+
+void install() {
+    struct sigaction action {};
+    action.sa_handler = onSignal;
+    sigemptyset(&action.sa_mask);
+    for (const int sig : kEndingSignals) // one handler at a time
+        sigaddset(&action.sa_mask, sig);
+    for (const int sig : kEndingSignals)
+        ::sigaction(sig, &action, nullptr);
 }
 
 } // namespace
 
-void installInterruptHandlers() {
+void ignoreBrokenPipes() {
     struct sigaction action {};
-    action.sa_handler = onSignal;
+    action.sa_handler = SIG_IGN;
     sigemptyset(&action.sa_mask);
-    sigaddset(&action.sa_mask, SIGINT); // one handler at a time
-    sigaddset(&action.sa_mask, SIGTERM);
-    ::sigaction(SIGINT, &action, nullptr);
-    ::sigaction(SIGTERM, &action, nullptr);
+    ::sigaction(SIGPIPE, &action, nullptr);
+}
+
+void installInterruptHandlers() {
+    g_endAtOnce.store(false);
+    install();
+}
+
+void installEndingHandlers() {
+    g_endAtOnce.store(true);
+    install();
 }
 
 int interruptSignal() {

@@ -9,12 +9,14 @@
 //   cutaway devices
 //
 // Exit codes: 0 success, 1 runtime failure, 2 bad input or usage;
-// 128 + signal when interrupted by SIGINT or SIGTERM.
+// 128 + signal when interrupted by SIGINT, SIGTERM, SIGHUP or SIGQUIT.
 #include "core/error.hpp"
 #include "core/process_memory.hpp"
 #include "gpu/context.hpp"
 #include "interrupt.hpp"
+#include "job/address_space.hpp"
 #include "job/export_volume.hpp"
+#include "job/output_paths.hpp"
 #include "job/render_job.hpp"
 #include "job/scene_check.hpp"
 #include "job/sequence.hpp"
@@ -124,6 +126,11 @@ int runRender(const RenderArgs& args) {
     options.onFrame = [&](const job::FrameEvent& e) { progress.frame(e); };
     options.stopRequested = [] { return cutaway::cli::interruptSignal() != 0; };
 
+    // The driver and the image, before the device is made (the volume's
+    // share is checked once it is read: job/address_space.hpp).
+    cutaway::Scene first = scene;
+    job::applyOverrides(first, options.overrides);
+    job::checkAddressSpace(job::addressSpaceNeed(first));
     cutaway::gpu::ContextOptions contextOptions;
     contextOptions.deviceName = args.device;
     if (!args.memoryBudget.empty()) {
@@ -144,6 +151,10 @@ int runRender(const RenderArgs& args) {
     if (summary.resourceExceeded) {
         std::fprintf(stderr, "cutaway: stopped: the device cannot render this scene (see above); "
                              "finished frames are whole\n");
+        if (const auto limit = job::addressSpaceLimit())
+            std::fprintf(stderr,
+                         "cutaway: note: under an address-space limit (ulimit -v) of %llu KiB\n",
+                         static_cast<unsigned long long>(*limit >> 10));
     }
     if (summary.writeFailed) {
         std::fprintf(stderr, "cutaway: stopped: a frame could not be written (see above); "
@@ -189,10 +200,11 @@ int runExport(const ExportArgs& args) {
         if (!scene.labels)
             throw cutaway::InputError("--labels-output " + args.labelsOutput + ": " + args.scene +
                                       " has no /labels");
-        if (std::filesystem::weakly_canonical(labelsOut) == std::filesystem::weakly_canonical(out))
-            throw cutaway::InputError("--labels-output " + args.labelsOutput +
-                                      ": the same file as -o");
     }
+    cutaway::job::checkExportPaths(
+        scene, out,
+        args.labelsOutput.empty() ? std::nullopt : std::optional<std::filesystem::path>(labelsOut));
+    cutaway::cli::installEndingHandlers(); // no temporary outlives a signal
     const cutaway::job::Exported exported = [&] {
         try {
             return cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
@@ -278,10 +290,34 @@ int runValidate(const RenderArgs& args) {
     return 0;
 }
 
+int runInfo(const std::string& file) {
+    std::fputs(cutaway::cli::describeVolume(cutaway::readVolume(file), file).c_str(), stdout);
+    return 0;
+}
+
+int runDevices() {
+    for (const auto& d : cutaway::gpu::listDevices())
+        std::printf("%s\n", d.c_str());
+    return 0;
+}
+
+// An allocation that failed: its size says little, an address-space limit much.
+int outOfMemory() {
+    const auto limit = cutaway::job::addressSpaceLimit();
+    std::cerr << "cutaway: error: out of memory"
+              << (limit ? " under the address-space limit (ulimit -v) of " +
+                              std::to_string(*limit >> 10) + " KiB"
+                        : std::string())
+              << "\n";
+    return kExitRuntime;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     cutaway::unmapLargeBlocksWhenFreed();
+    cutaway::shareArenasUnderAddressLimit();
+    cutaway::cli::ignoreBrokenPipes();
     CLI::App app{"cutaway: illustrative volume manipulation, rendered to EXR"};
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("cutaway ") + CUTAWAY_VERSION);
@@ -361,20 +397,13 @@ int main(int argc, char** argv) {
         if (render->parsed()) return runRender(renderArgs);
         if (validate->parsed()) return runValidate(validateArgs);
         if (exportCommand->parsed()) return runExport(exportArgs);
-        if (info->parsed()) {
-            std::fputs(
-                cutaway::cli::describeVolume(cutaway::readVolume(infoFile), infoFile).c_str(),
-                stdout);
-            return 0;
-        }
-        if (devices->parsed()) {
-            for (const auto& d : cutaway::gpu::listDevices())
-                std::printf("%s\n", d.c_str());
-            return 0;
-        }
+        if (info->parsed()) return runInfo(infoFile);
+        if (devices->parsed()) return runDevices();
     } catch (const cutaway::InputError& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";
         return kExitInput;
+    } catch (const std::bad_alloc&) {
+        return outOfMemory();
     } catch (const std::exception& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";
         return kExitRuntime;

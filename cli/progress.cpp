@@ -33,6 +33,9 @@ void Progress::frame(const job::FrameEvent& event) {
 
 void Progress::summary(const job::SequenceSummary& s) const {
     if (!m_verbose) return;
+    if (!s.removedTemporaries.empty())
+        std::fprintf(stderr, "cutaway: removed %zu temporary file(s) a killed run left\n",
+                     s.removedTemporaries.size());
     std::vector<double> times = s.frameSeconds;
     double median = 0.0;
     if (!times.empty()) {

@@ -40,13 +40,17 @@ std::string describeVolume(const Volume& volume, const std::string& name) {
     if (volume.slope != 1.0 || volume.inter != 0.0)
         add("  scaling  value = raw * %g + %g\n", volume.slope, volume.inter);
     add("  values   [%g, %g]\n", range.min, range.max);
+    // NaN and infinite voxels are left out of the values (and rendered as empty).
+    if (const std::size_t count = nonFiniteCount(volume))
+        add("  non-finite %zu voxel(s) (NaN or infinite): not in the values or the histogram\n",
+            count);
 
     constexpr int kBins = 16;
     std::vector<std::size_t> bins(kBins, 0);
     const double width = range.max > range.min ? (range.max - range.min) / kBins : 1.0;
     for (std::size_t i = 0; i < volume.voxelCount(); ++i) {
         const double v = volume.value(i);
-        if (std::isnan(v)) continue;
+        if (!std::isfinite(v)) continue;
         int b = static_cast<int>((v - range.min) / width);
         bins[static_cast<std::size_t>(std::clamp(b, 0, kBins - 1))]++;
     }

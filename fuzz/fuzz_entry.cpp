@@ -1,6 +1,7 @@
 #include "fuzz_entry.hpp"
 
 #include "core/error.hpp"
+#include "mesh/mesh.hpp"
 #include "scene/animation.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/scene.hpp"
@@ -56,6 +57,19 @@ void fuzzNrrd(const std::uint8_t* data, std::size_t size) {
 
 void fuzzNifti(const std::uint8_t* data, std::size_t size) {
     expectingInputErrors([&] { valueRange(readNiftiBytes(bytesOf(data, size), "fuzz.nii")); });
+}
+
+void fuzzNhdr(const std::uint8_t* data, std::size_t size) {
+    expectingInputErrors([&] {
+        valueRange(readNrrdBytes(bytesOf(data, size), "fuzz.nhdr", CUTAWAY_FUZZ_NHDR_DIR));
+    });
+}
+
+void fuzzGltf(const std::uint8_t* data, std::size_t size) {
+    expectingInputErrors([&] {
+        const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+        mesh::loadGltfBytes(bytes, "fuzz.gltf", std::filesystem::path(CUTAWAY_FUZZ_MESH_DIR));
+    });
 }
 
 } // namespace cutaway::fuzz

@@ -6,8 +6,13 @@ should change):
   fuzz/corpus/scene/  the example scenes of scenes/ and the bad scenes of tests/scene/bad/
   fuzz/corpus/nrrd/   tiny hand-made NRRD files: every voxel type, both byte orders, raw and gzip
   fuzz/corpus/nifti/  tiny hand-made NIfTI-1 files, .nii and .nii.gz
+  fuzz/corpus/nhdr/   detached NRRD headers naming the data files of fuzz/nhdr_data/
+  fuzz/corpus/gltf/   the example scenes' tool models (scenes/meshes/)
+  fuzz/nhdr_data/     the data files those headers name: raw, gzip, with lines to skip
   fuzz/scene.dict     the keys and enum strings of scenes/scene.schema.json
   fuzz/nrrd.dict      NRRD magic, field names and values
+  fuzz/nhdr.dict      the same, and data file names (fuzz/nhdr_data/'s, a folder, a device)
+  fuzz/gltf.dict      glTF keys, enums and component types
 
 Deterministic: gzip streams carry no time stamp, files are written in order.
 """
@@ -100,6 +105,44 @@ def nrrd_seeds() -> None:
         (out / name).write_bytes(content)
 
 
+def nhdr_seeds() -> None:
+    data = ROOT / "fuzz" / "nhdr_data"
+    shutil.rmtree(data, ignore_errors=True)
+    data.mkdir(parents=True)
+    (data / "u8.raw").write_bytes(bytes(range(8)))
+    (data / "i16-big.raw").write_bytes(struct.pack(">4h", -1024, 0, 40, 3071))
+    (data / "f32.gz").write_bytes(gz(struct.pack("<4f", 0.0, 0.5, float("nan"), -2.0)))
+    (data / "skip.raw").write_bytes(b"a line to skip\n" + bytes(range(8)))
+    out = fresh("nhdr")
+    u8 = "type: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n"
+    seeds = {
+        "u8.nhdr": nrrd(u8 + "data file: u8.raw\n", b""),
+        "i16-big.nhdr": nrrd(
+            "type: short\ndimension: 3\nsizes: 2 2 1\nendian: big\nencoding: raw\n"
+            "space: left-posterior-superior\nspace directions: (1,0,0) (0,1,0) (0,0,2)\n"
+            "data file: i16-big.raw\n",
+            b"",
+        ),
+        "f32-gzip.nhdr": nrrd(
+            "type: float\ndimension: 3\nsizes: 2 2 1\nendian: little\nencoding: gzip\n"
+            "data file: f32.gz\n",
+            b"",
+        ),
+        "line-skip.nhdr": nrrd(u8 + "line skip: 1\ndata file: skip.raw\n", b""),
+        "byte-skip-end.nhdr": nrrd(u8 + "byte skip: -1\ndata file: skip.raw\n", b""),
+        "comments.nhdr": nrrd("# detached\n" + u8 + "content: seed\ndata file: ./u8.raw\n", b"",
+                              "NRRD0005"),
+    }
+    for name, content in seeds.items():
+        (out / name).write_bytes(content)
+
+
+def gltf_seeds() -> None:
+    out = fresh("gltf")
+    for src in sorted((ROOT / "scenes" / "meshes").iterdir()):
+        shutil.copyfile(src, out / src.name)
+
+
 def nifti(
     dims, datatype: int, bitpix: int, data: bytes, *, big=False, pixdim=(1, 1, 1),
     vox_offset=352.0, slope=0.0, inter=0.0, qform=0, sform=0, extension=b"\0\0\0\0",
@@ -188,9 +231,34 @@ def nrrd_dict() -> None:
     dictionary(ROOT / "fuzz" / "nrrd.dict", [f + ": " for f in fields] + values)
 
 
+def nhdr_dict() -> None:
+    words = ["data file: ", "u8.raw", "i16-big.raw", "f32.gz", "skip.raw", ".", "..", "/dev/zero",
+             "/dev/stdin", "LIST", "%03d", "byte skip: ", "line skip: ", "encoding: ", "gzip",
+             "raw", "sizes: ", "type: ", "NRRD0004", "\n"]
+    dictionary(ROOT / "fuzz" / "nhdr.dict", words)
+
+
+def gltf_dict() -> None:
+    keys = ["asset", "version", "buffers", "bufferViews", "accessors", "meshes", "primitives",
+            "attributes", "indices", "nodes", "children", "scenes", "scene", "matrix",
+            "translation", "rotation", "scale", "uri", "byteLength", "byteOffset", "byteStride",
+            "componentType", "count", "type", "mode", "material", "materials", "mesh",
+            "pbrMetallicRoughness", "baseColorFactor", "sparse", "images", "textures", "extras",
+            "extensions", "normalized", "min", "max", "buffer", "bufferView"]
+    values = ['"2.0"', '"POSITION"', '"NORMAL"', '"COLOR_0"', '"SCALAR"', '"VEC3"', '"VEC4"',
+              '"MAT4"', "5120", "5121", "5122", "5123", "5125", "5126", '"forceps.gltf"',
+              '"retractor.glb"', '"."', '"/dev/zero"', '"data:application/octet-stream;base64,',
+              "glTF", "JSON", "BIN\0", "[", "]", "{", "}"]
+    dictionary(ROOT / "fuzz" / "gltf.dict", [f'"{k}":' for k in keys] + values)
+
+
 if __name__ == "__main__":
     scene_seeds()
     nrrd_seeds()
     nifti_seeds()
+    nhdr_seeds()
+    gltf_seeds()
     scene_dict()
     nrrd_dict()
+    nhdr_dict()
+    gltf_dict()

@@ -15,6 +15,8 @@ targets=(
   "scene 16384 fuzz/scene.dict"
   "nrrd 4096 fuzz/nrrd.dict"
   "nifti 4096 -"
+  "nhdr 4096 fuzz/nhdr.dict"
+  "gltf 65536 fuzz/gltf.dict"
 )
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}

@@ -113,10 +113,10 @@ gpu::Image uploadValueImage(const gpu::Context& ctx, VkFormat format, glm::ivec3
                             std::size_t texelBytes, const gpu::TexelWriter& write, bool storage) {
     const VkExtent3D extent{static_cast<uint32_t>(dims.x), static_cast<uint32_t>(dims.y),
                             static_cast<uint32_t>(dims.z)};
-    gpu::Image image =
-        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, format, extent,
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                             (storage ? VK_IMAGE_USAGE_STORAGE_BIT : VkImageUsageFlags(0)));
+    gpu::Image image = gpu::createImage(
+        ctx, VK_IMAGE_TYPE_3D, format, extent,
+        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+            (storage ? VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT} : VkImageUsageFlags{0}));
     image.layout = storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::uploadImage(ctx, image, texelBytes, write, image.layout,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |

@@ -1,6 +1,7 @@
 #pragma once
 // How the process's allocator treats large blocks, for programs that hold volumes.
 #include <cstddef>
+#include <sys/resource.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -28,6 +29,25 @@ inline void unmapLargeBlocksWhenFreed() {
 #if defined(__GLIBC__)
     mallopt(M_MMAP_THRESHOLD, kMappedBlockBytes);
     mallopt(M_TRIM_THRESHOLD, 2 * kMappedBlockBytes);
+#endif
+}
+
+/// The malloc arenas a process may have under an address-space limit.
+inline constexpr int kArenasUnderAddressLimit = 2;
+
+/// Under an address-space limit (RLIMIT_AS, `ulimit -v`), has glibc share
+/// kArenasUnderAddressLimit malloc arenas among all threads. By default each
+/// thread that allocates gets an arena of its own, up to eight per core,
+/// each reserving 64 MiB of address space: lavapipe's rasterizer threads
+/// made a tiny frame need 690 MiB of address space with 2 threads and
+/// 1490 MiB with 16, against 310 and 590 with shared arenas (measured).
+/// Without a limit nothing changes. Call once at the start of main, before
+/// any thread starts. Does nothing on other C libraries.
+inline void shareArenasUnderAddressLimit() {
+#if defined(__GLIBC__)
+    rlimit limit{};
+    if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+        mallopt(M_ARENA_MAX, kArenasUnderAddressLimit);
 #endif
 }
 

@@ -31,7 +31,11 @@ std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
 
 Exported exportVolume(const Scene& scene, bool withLabels) {
     if (withLabels && !scene.labels) throw InputError("the scene has no /labels to export");
-    auto scan = std::make_shared<Volume>(loadSceneVolume(scene));
+    std::size_t nonFinite = 0;
+    auto scan = std::make_shared<Volume>(loadSceneVolume(scene, &nonFinite));
+    Exported result;
+    if (nonFinite > 0)
+        result.warnings.push_back(nonFiniteWarning(scene, nonFinite, scan->voxelCount()));
     const float empty = emptyValue(scene, *scan);
     const bool resamplesSequentially = sequential(scene);
     // Segments by labels: the parser allows them only where the operator
@@ -64,7 +68,6 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
     const operators::PlacedVolume placed =
         operators::centred(labels.get() == scan.get() ? Volume(*scan) : std::move(*scan));
     scan.reset();
-    Exported result;
     for (OperatorOutside& o :
          operatorsOutside(scene, placed.worldLo, placed.worldLo + placed.volume.extent()))
         result.warnings.push_back(std::move(o.message));

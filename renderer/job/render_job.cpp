@@ -1,6 +1,7 @@
 #include "job/render_job.hpp"
 
 #include "core/error.hpp"
+#include "job/address_space.hpp"
 #include "job/scene_check.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/volume_renderer.hpp"
@@ -12,7 +13,7 @@
 
 namespace cutaway::job {
 
-Volume loadSceneVolume(const Scene& scene) {
+Volume loadSceneVolume(const Scene& scene, std::size_t* nonFinite) {
     const VolumeSource& src = scene.volume;
     Volume volume;
     if (!src.phantom.empty())
@@ -22,7 +23,20 @@ Volume loadSceneVolume(const Scene& scene) {
     else
         volume = readVolume(src.file);
     if (src.spacing) volume.spacing = *src.spacing;
+    // After the value range (which leaves them out) is known: the window and
+    // empty space's value come from the finite voxels.
+    const std::size_t replaced = replaceNonFinite(volume, emptyValue(scene, volume));
+    if (nonFinite) *nonFinite = replaced;
     return volume;
+}
+
+std::string nonFiniteWarning(const Scene& scene, std::size_t count, std::size_t voxels) {
+    return "/volume/file: " + scene.volume.file.string() + ": " +
+           (count == voxels ? "all " + std::to_string(count) + " voxels are"
+            : count == 1    ? "1 voxel is"
+                            : std::to_string(count) + " voxels are") +
+           " not finite (NaN or infinite): left out of the value range and the automatic "
+           "window, rendered as empty";
 }
 
 namespace {
@@ -106,13 +120,14 @@ FrameVolume frameVolume(const Scene& scene) {
     // A phantom with its own labels is generated once, for both.
     std::optional<Volume> phantomLabels;
     Volume scan;
+    std::size_t nonFinite = 0;
     if (scene.labels && scene.labels->phantom && !sequential(scene)) {
         Phantom phantom = makePhantom(scene.volume.phantom, scene.volume.phantomSize);
         scan = std::move(phantom.values);
         if (scene.volume.spacing) scan.spacing = *scene.volume.spacing;
         phantomLabels = std::move(phantom.labels);
     } else {
-        scan = loadSceneVolume(scene);
+        scan = loadSceneVolume(scene, &nonFinite);
     }
     const bake::ValueWindow window = sceneWindow(scene, scan);
     const float empty = sequential(scene) ? emptyValue(scene, scan) : 0.0f;
@@ -129,7 +144,7 @@ FrameVolume frameVolume(const Scene& scene) {
         sequential(scene) ? nullptr
         : phantomLabels   ? checkedLabels(scene, std::move(*phantomLabels), *shared)
                           : loadSceneLabels(scene, shared);
-    return FrameVolume{std::move(shared), placed.worldLo, window, std::move(labels)};
+    return FrameVolume{std::move(shared), placed.worldLo, window, std::move(labels), nonFinite};
 }
 
 std::string frameVolumeKey(const Scene& scene) {
@@ -276,7 +291,11 @@ Image FrameRenderer::render(const Scene& scene) {
     if (!m_volume || key != m_volumeKey) {
         m_volume.reset(); // free the old textures before making new ones
         FrameVolume fv = frameVolume(scene);
+        // Before the upload and the pipelines: past the limit, the driver fails inside.
+        checkAddressSpace(addressSpaceNeed(scene, fv.scan.get(), fv.labels.get()));
         const glm::ivec3 dims = fv.scan->dims;
+        if (fv.nonFinite > 0 && m_warnedNonFinite.insert(key).second)
+            m_warnings.push_back(nonFiniteWarning(scene, fv.nonFinite, fv.scan->voxelCount()));
         try {
             m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
                 m_ctx, m_baker, std::move(fv.scan), fv.window, fv.worldLo, std::move(fv.labels)));
@@ -289,6 +308,8 @@ Image FrameRenderer::render(const Scene& scene) {
         }
         m_volumeKey = key;
         ++m_uploads;
+    } else {
+        checkAddressSpace(addressSpaceNeed(scene, m_volume->scan.get(), m_volume->labels.get()));
     }
     warnOfOperatorsOutside(scene);
     Scene live = scene;

@@ -24,8 +24,15 @@
 namespace cutaway::job {
 
 /// The scene's volume: read from its file (or made as its phantom), with the
-/// spacing override applied. Throws InputError naming the file on failure.
-Volume loadSceneVolume(const Scene& scene);
+/// spacing override applied. Its NaN and infinite voxels (a float file's)
+/// are left out of its value range and the automatic window, and take the
+/// value of empty space (emptyValue), so they render as empty; `nonFinite`,
+/// if given, receives how many there were. Throws InputError naming the file
+/// on failure.
+Volume loadSceneVolume(const Scene& scene, std::size_t* nonFinite = nullptr);
+
+/// The warning for a volume with `count` non-finite voxels of `voxels`.
+std::string nonFiniteWarning(const Scene& scene, std::size_t count, std::size_t voxels);
 
 /// The scene's label volume (/labels), or null without one: read from its
 /// file or made with the phantom, checked against the scan's grid (same dims,
@@ -59,6 +66,7 @@ struct FrameVolume {
     glm::dvec3 worldLo{0.0}; ///< where the scan's corner lies in the world
     bake::ValueWindow window;
     std::shared_ptr<const Volume> labels; ///< on the scan's grid (maybe the scan), or null
+    std::size_t nonFinite = 0; ///< NaN and infinite voxels the scan's file held (now empty)
 };
 FrameVolume frameVolume(const Scene& scene);
 
@@ -107,6 +115,9 @@ public:
     /// What the renders since the last call derived, one line each (e.g. the
     /// Otsu threshold of surface alignment and its bake time).
     std::vector<std::string> takeNotes() { return m_renderer.takeNotes(); }
+    /// What the last frame derived, without times: the feature fields it
+    /// read, the same lines for every frame that reads the same fields.
+    std::vector<std::string> fieldsInUse() const { return m_renderer.fieldsInUse(); }
     /// What in the scenes since the last call is likely a mistake, once per
     /// run: an operator whose box does not reach the volume moves nothing.
     std::vector<std::string> takeWarnings() { return std::exchange(m_warnings, {}); }
@@ -121,7 +132,8 @@ private:
     std::string m_volumeKey;
     int m_uploads = 0;
     std::vector<std::string> m_warnings;
-    std::set<std::size_t> m_warnedOutside; ///< operator indices already warned of
+    std::set<std::size_t> m_warnedOutside;   ///< operator indices already warned of
+    std::set<std::string> m_warnedNonFinite; ///< volumes (frameVolumeKey) already warned of
 };
 
 /// Renders one frame to an image without writing anything (tests, benchmark).

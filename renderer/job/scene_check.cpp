@@ -72,7 +72,7 @@ const SceneFileCheck::Files& SceneFileCheck::filesOf(const Scene& scene) {
         try {
             // Sequential composition resamples the scan and drops its labels
             // (frameVolume): they are not read for such a frame.
-            files.scan = std::make_shared<const Volume>(loadSceneVolume(scene));
+            files.scan = std::make_shared<const Volume>(loadSceneVolume(scene, &files.nonFinite));
             if (!sequential(scene)) files.labels = loadSceneLabels(scene, files.scan);
         } catch (const InputError& e) {
             files.error = e.what(); // read once, reported for every frame that names them
@@ -110,6 +110,8 @@ void SceneFileCheck::frame(const Scene& scene) {
     }
     for (const MeshSpec& mesh : scene.meshes)
         if (m_meshesRead.insert(mesh.file.string()).second) mesh::loadGltf(mesh.file);
+    if (files.nonFinite > 0 && m_warnedFiles.insert(files.key).second)
+        m_warnings.push_back(nonFiniteWarning(scene, files.nonFinite, files.scan->voxelCount()));
     const glm::dvec3 extent = files.scan->extent();
     for (OperatorOutside& o : operatorsOutside(scene, -0.5 * extent, 0.5 * extent))
         if (m_warned.insert(o.index).second) m_warnings.push_back(std::move(o.message));

@@ -43,7 +43,8 @@ private:
     struct Files {
         std::string key;
         std::shared_ptr<const Volume> scan, labels;
-        std::string error; ///< why reading them failed, or ""
+        std::string error;         ///< why reading them failed, or ""
+        std::size_t nonFinite = 0; ///< the scan's NaN and infinite voxels (warned of once)
     };
     const Files& filesOf(const Scene& scene);
 
@@ -51,6 +52,7 @@ private:
     std::map<std::string, std::string> m_segments; ///< segment checked -> its error, or ""
     std::set<std::string> m_meshesRead;
     std::set<std::size_t> m_warned;
+    std::set<std::string> m_warnedFiles; ///< files keys whose non-finite voxels were warned of
     std::vector<std::string> m_warnings;
 };
 

@@ -4,6 +4,7 @@
 #include "io/atomic_file.hpp"
 #include "io/exr.hpp"
 #include "io/png.hpp"
+#include "job/output_paths.hpp"
 #include "scene/animation.hpp"
 
 #include <algorithm>
@@ -67,51 +68,6 @@ std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& optio
     for (int f = range.first; f <= range.last; ++f)
         if (f % options.shard.count == options.shard.index) frames.push_back(f);
     return frames;
-}
-
-void checkOutputPaths(const Scene& scene, const SequenceOptions& options) {
-    const std::vector<int> frames = framesToRender(scene, options);
-    if (frames.empty()) return;
-    const std::string& pattern = options.overrides.outputPattern.value_or(scene.output.pattern);
-    const bool png = scene.output.png || options.overrides.png;
-    const std::string file = scene.file.empty() ? "" : scene.file.string() + ": ";
-    const std::string where = options.overrides.outputPattern
-                                  ? "-o " + pattern
-                                  : file + "/output/pattern \"" + pattern + "\"";
-    // Judged on the whole run, every shard's frames: a shard of one frame
-    // with a fixed name would still replace the other shards' files.
-    SequenceOptions whole = options;
-    whole.shard = Shard{};
-    const std::size_t runFrames = framesToRender(scene, whole).size();
-    const int placeholders = framePlaceholders(pattern);
-    if (runFrames > 1 && placeholders == 0)
-        throw InputError(where + ": no frame number (#### or %04d) in a run of " +
-                         std::to_string(runFrames) + " frames; each frame would replace the last");
-    if (placeholders > 1)
-        throw InputError(where + ": " + std::to_string(placeholders) +
-                         " frame numbers (runs of # or %d); give exactly one");
-    for (const int frame : frames) {
-        const std::filesystem::path exr = expandPattern(pattern, frame);
-        if (png && previewPath(exr) == exr)
-            throw InputError(where + ": the EXR file " + exr.string() +
-                             " would be replaced by its PNG preview; name it .exr");
-        std::vector<std::filesystem::path> paths{exr};
-        if (png) paths.push_back(previewPath(exr));
-        for (const std::filesystem::path& path : paths) {
-            if (path.filename().string().size() > kLongestFileName)
-                throw InputError(where + ": frame " + std::to_string(frame) +
-                                 "'s file name is longer than the " +
-                                 std::to_string(kLongestFileName) +
-                                 " bytes cutaway can write (a folder holds names of 255, and "
-                                 "each file is first written under a longer temporary name)");
-            std::error_code ec;
-            const auto status = std::filesystem::status(path, ec);
-            if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-                throw InputError(where + ": " + path.string() +
-                                 " exists and is not a regular file (a folder, a device, a "
-                                 "pipe); cutaway does not replace it");
-        }
-    }
 }
 
 namespace {
@@ -192,9 +148,11 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                                const SequenceOptions& options) {
     const auto runStart = Clock::now();
     checkOutputPaths(scene, options);
+    SequenceSummary summary;
+    if (options.skipExisting)
+        summary.removedTemporaries = removeStaleTemporariesOfRun(scene, options);
     const auto stop = [&] { return options.stopRequested && options.stopRequested(); };
     const std::vector<int> frames = framesToRender(scene, options);
-    SequenceSummary summary;
     std::unique_ptr<FrameRenderer> renderer; // made on the first frame that needs it
     bool halted = false; // a failed frame under --fail-fast, a failed write, a limit
     const auto report = [&](FrameEvent& event) {
@@ -291,8 +249,12 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
                               {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
                               {"cutaway/version", CUTAWAY_VERSION},
                               {"cutaway/scene", recordedScene(frameScene).dump()}};
-            for (std::size_t n = 0; n < event.notes.size(); ++n)
-                exr.attributes.push_back({"cutaway/note" + std::to_string(n), event.notes[n]});
+            // The file records what the frame used, never when or how long
+            // (the bakes' times go to the terminal): files are the same
+            // whichever process, shard or rerun writes them.
+            const std::vector<std::string> used = renderer->fieldsInUse();
+            for (std::size_t n = 0; n < used.size(); ++n)
+                exr.attributes.push_back({"cutaway/note" + std::to_string(n), used[n]});
             std::future<double> write =
                 writeFrameFiles(event.exr, event.png, std::move(image), std::move(exr));
             pending.push_back(PendingWrite{std::move(event), renderSeconds, std::move(write)});

@@ -84,8 +84,10 @@ struct FrameEvent {
 struct SequenceOptions {
     std::optional<FrameRange> frames; ///< default: the scene's /animation/frames
     Shard shard;                      ///< this run renders frames with f mod count == index
-    bool skipExisting = false;        ///< leave frames whose files exist untouched
-    bool failFast = false;            ///< stop at the first failed frame
+    /// Leave frames whose files exist untouched, and remove the temporaries
+    /// of this run's frames that a killed run left.
+    bool skipExisting = false;
+    bool failFast = false; ///< stop at the first failed frame
     RenderOverrides overrides;
     /// Frames whose files may be written at once while later frames render,
     /// up to kMostWritersAllowed; 0: writesInFlight(the machine's cores, the
@@ -104,6 +106,9 @@ struct SequenceSummary {
     bool writeFailed = false;      ///< a frame's files could not be written: the run stopped there
     bool resourceExceeded = false; ///< a device limit or the memory budget stopped the run
     int volumeUploads = 0; ///< volumes loaded, uploaded and baked: 1 unless /volume is animated
+    /// With skipExisting: the temporaries of this run's frames that a killed
+    /// run left, removed (removeStaleTemporariesOfRun, output_paths.hpp).
+    std::vector<std::filesystem::path> removedTemporaries;
     std::vector<double> frameSeconds; ///< of rendered frames, as FrameEvent::seconds
     /// When each rendered frame's files were written, in seconds since the run
     /// began: the rate between the first and the last is the steady one, after
@@ -115,14 +120,8 @@ struct SequenceSummary {
 /// The frames this run visits, in order.
 std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& options);
 
-/// Checks the run's output paths before anything is rendered; throws
-/// InputError naming -o or the scene's /output/pattern when the pattern has
-/// no frame number (#### or %04d) but the run visits several frames (each
-/// would replace the last), when an EXR path is its own PNG preview (a
-/// pattern ending in .png), or when a path exists and is not a regular file.
-void checkOutputPaths(const Scene& scene, const SequenceOptions& options);
-
-/// Renders and writes the frames. Per-frame errors are reported through
+/// Renders and writes the frames, once checkOutputPaths (output_paths.hpp)
+/// passes. Per-frame errors are reported through
 /// onFrame and counted; a frame interrupted by stopRequested is discarded
 /// (never written). A frame whose files cannot be written (disk full) fails
 /// and ends the run: its temporaries are removed, earlier frames stay whole,

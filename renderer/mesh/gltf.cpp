@@ -1,14 +1,17 @@
 // glTF 2.0 tool meshes, parsed by tinygltf (Debian's shared build): the
 // default scene's triangle primitives, with node transforms applied.
 #include "core/error.hpp"
+#include "io/input_file.hpp"
+#include "io/json_limits.hpp"
 #include "mesh/gltf_detail.hpp"
 #include "mesh/mesh.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cstring>
-#include <fstream>
 #include <new>
+#include <optional>
+#include <sys/stat.h>
 #include <tiny_gltf.h>
 
 namespace cutaway::mesh {
@@ -30,57 +33,121 @@ std::string oneLine(std::string s) {
     return s;
 }
 
-// tinygltf reports a cut-off .glb only as "Invalid glTF binary."; say what is wrong.
-void checkGlbHeader(const std::filesystem::path& file, const std::string& ctx) {
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(file, ec);
-    unsigned char header[12] = {};
-    std::ifstream in(file, std::ios::binary);
-    in.read(reinterpret_cast<char*>(header), sizeof header);
-    if (ec || in.gcount() < 12 || std::memcmp(header, "glTF", 4) != 0)
-        throw InputError(ctx + ": not a binary glTF file (no \"glTF\" magic at its start)");
-    std::uint32_t version = 0, length = 0;
-    std::memcpy(&version, header + 4, 4);
-    std::memcpy(&length, header + 8, 4);
-    if (version != 2)
-        throw InputError(ctx + ": unsupported binary glTF version " + std::to_string(version));
-    if (length > size) {
-        throw InputError(ctx + ": truncated: the header gives " + std::to_string(length) +
-                         " bytes, the file has " + std::to_string(size));
+// The largest model file (and file it names) read: tinygltf takes sizes as
+// 32-bit numbers, and a tool model is a few megabytes.
+constexpr std::uint64_t kMaxModelBytes = std::uint64_t{1} << 30;
+
+// What tinygltf reads besides the model file, through cutaway's input checks
+// (io/input_file.hpp): its own file access would block for ever in open() on
+// a named pipe and read a folder as a file of absurd size. Without a folder
+// (a model in memory) it reads nothing.
+struct NamedFiles {
+    std::optional<std::filesystem::path> folder;
+    std::string model; ///< the model, for messages
+    std::vector<std::filesystem::path> read;
+    std::string error; ///< why the last read failed
+};
+
+bool namedFileExists(const std::string& path, void* user) {
+    struct stat status {}; // any kind: readNamedFile says what is wrong with it
+    return static_cast<NamedFiles*>(user)->folder && ::stat(path.c_str(), &status) == 0;
+}
+
+std::string keepFilePath(const std::string& path, void*) {
+    return path;
+}
+
+bool readNamedFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* user) {
+    NamedFiles& files = *static_cast<NamedFiles*>(user);
+    try {
+        InputFile file(path, "a file the model names", files.model + ": " + path);
+        const std::string bytes = file.readAll(kMaxModelBytes);
+        out->assign(bytes.begin(), bytes.end());
+        files.read.emplace_back(path);
+        return true;
+    } catch (const InputError& e) {
+        files.error = e.what();
+        if (err) *err += files.error;
+        return false;
     }
 }
 
-tinygltf::Model parse(const std::filesystem::path& file, const std::string& ctx) {
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (ext != ".gltf" && ext != ".glb")
-        throw InputError(ctx + ": unknown extension \"" + ext + "\" (expected .gltf or .glb)");
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) throw InputError(ctx + ": file not found");
-    const bool binary = ext == ".glb";
-    if (binary) checkGlbHeader(file, ctx);
+bool writeNoFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
+    return false;
+}
 
+// tinygltf reports a cut-off .glb only as "Invalid glTF binary."; say what is
+// wrong. Returns the JSON chunk's text.
+std::string_view glbJson(std::string_view bytes, const std::string& ctx) {
+    if (bytes.size() < 12 || bytes.substr(0, 4) != "glTF")
+        throw InputError(ctx + ": not a binary glTF file (no \"glTF\" magic at its start)");
+    std::uint32_t version = 0, length = 0, jsonLength = 0;
+    std::memcpy(&version, bytes.data() + 4, 4);
+    std::memcpy(&length, bytes.data() + 8, 4);
+    if (version != 2)
+        throw InputError(ctx + ": unsupported binary glTF version " + std::to_string(version));
+    if (length > bytes.size()) {
+        throw InputError(ctx + ": truncated: the header gives " + std::to_string(length) +
+                         " bytes, the file has " + std::to_string(bytes.size()));
+    }
+    if (bytes.size() < 20) return {}; // tinygltf says what is missing
+    std::memcpy(&jsonLength, bytes.data() + 12, 4);
+    return bytes.substr(20, jsonLength);
+}
+
+// Parses a model's bytes (.glb when `binary`), reading the files it names
+// from `files.folder`.
+tinygltf::Model parse(std::string_view bytes, bool binary, const std::string& ctx,
+                      NamedFiles& files) {
+    // The JSON is nested no deeper than a scene's before tinygltf, which
+    // recurses once per level, reads it.
+    checkJsonText(binary ? glbJson(bytes, ctx) : bytes, ctx, JsonLimits{});
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(&skipImage, nullptr);
+    loader.SetFsCallbacks({&namedFileExists, &keepFilePath, &readNamedFile, &writeNoFile, &files});
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
+    const std::string folder = files.folder ? files.folder->string() : std::string();
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+    const auto size = static_cast<unsigned int>(bytes.size());
     try {
-        ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, file.string())
-                    : loader.LoadASCIIFromFile(&model, &err, &warn, file.string());
+        ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, data, size, folder)
+                    : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), size, folder);
     } catch (const std::bad_alloc&) {
         throw;
     } catch (const std::exception& e) {
         // tinygltf reports through err; this is for anything that escapes it.
         throw InputError(ctx + ": not a valid glTF file: " + e.what());
     }
+    if (!ok && !files.error.empty()) throw InputError(files.error);
     if (!ok) {
         std::string message = ctx + ": not a valid glTF file: " + oneLine(err);
         if (!warn.empty()) message += " (warnings: " + oneLine(warn) + ")";
         throw InputError(message);
     }
     return model;
+}
+
+bool isBinaryName(const std::filesystem::path& file, const std::string& ctx) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (ext != ".gltf" && ext != ".glb")
+        throw InputError(ctx + ": unknown extension \"" + ext + "\" (expected .gltf or .glb)");
+    return ext == ".glb";
+}
+
+// Reads the model file and parses it; `files` receives what it names.
+tinygltf::Model parseFile(const std::filesystem::path& file, NamedFiles& files) {
+    const std::string ctx = file.string();
+    const bool binary = isBinaryName(file, ctx);
+    const std::string bytes = InputFile(file, "glTF model").readAll(kMaxModelBytes);
+    files.folder = file.parent_path().empty() ? std::filesystem::path(".") : file.parent_path();
+    files.model = ctx;
+    files.read.push_back(file);
+    return parse(bytes, binary, ctx, files);
 }
 
 // The node's local transform: its matrix, or T * R * S.
@@ -145,12 +212,8 @@ std::vector<int> sceneRoots(const tinygltf::Model& model, const std::string& ctx
     return roots;
 }
 
-} // namespace
-
-TriangleMesh loadGltf(const std::filesystem::path& file) {
-    const std::string ctx = file.string();
-    const tinygltf::Model model = parse(file, ctx);
-
+// The triangles of a parsed model's default scene, in world units.
+TriangleMesh trianglesOf(const tinygltf::Model& model, const std::string& ctx) {
     // Depth-first in document order, with an explicit stack: a hostile file
     // may nest nodes deeper than the call stack would allow.
     struct Pending {
@@ -189,6 +252,27 @@ TriangleMesh loadGltf(const std::filesystem::path& file) {
     }
     if (result.indices.empty()) throw InputError(ctx + ": no triangle meshes");
     return result;
+}
+
+} // namespace
+
+TriangleMesh loadGltf(const std::filesystem::path& file) {
+    NamedFiles files;
+    return trianglesOf(parseFile(file, files), file.string());
+}
+
+TriangleMesh loadGltfBytes(std::string_view bytes, const std::string& name,
+                           const std::optional<std::filesystem::path>& folder) {
+    NamedFiles files;
+    files.model = name;
+    files.folder = folder;
+    return trianglesOf(parse(bytes, bytes.substr(0, 4) == "glTF", name, files), name);
+}
+
+std::vector<std::filesystem::path> gltfFiles(const std::filesystem::path& file) {
+    NamedFiles files;
+    parseFile(file, files);
+    return files.read;
 }
 
 } // namespace cutaway::mesh

@@ -4,6 +4,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace cutaway::mesh {
@@ -25,8 +28,22 @@ struct TriangleMesh {
 
 /// Reads a glTF 2.0 file (.gltf with its buffers, or .glb): every triangle
 /// primitive of the default scene's nodes, with node transforms applied.
-/// Throws InputError naming the file and what is wrong with it.
+/// Throws InputError naming the file and what is wrong with it. The model
+/// and every file it names are read as io/input_file.hpp reads inputs
+/// (regular files only, never blocking), each up to 1 GiB, and its JSON is
+/// nested no deeper than io/json_limits.hpp allows.
 TriangleMesh loadGltf(const std::filesystem::path& file);
+
+/// The same for a model's bytes in memory (.glb when they start with its
+/// magic, else .gltf JSON), `name` standing for the file in messages. The
+/// files it names are read from `folder`; without one it names none (only
+/// data URIs and the .glb's own buffer are read).
+TriangleMesh loadGltfBytes(std::string_view bytes, const std::string& name,
+                           const std::optional<std::filesystem::path>& folder = std::nullopt);
+
+/// The files reading `file` reads: the model, then the buffers and images it
+/// names. Throws as loadGltf does when the model cannot be read.
+std::vector<std::filesystem::path> gltfFiles(const std::filesystem::path& file);
 
 /// The outline of the box [lo, hi]: its 12 edges as square bars `width` thick
 /// (so the lines keep their width at any image size), flat-shaded, one colour.

@@ -28,10 +28,10 @@ FeatureFields::FeatureFields(const gpu::Context& ctx, bool storageImages)
     : m_ctx(ctx), m_baker(ctx), m_rangeBaker(ctx) {
     // Axis alignment's field, bound as a storage image too where the shaders
     // take the storage paths.
-    m_none =
-        gpu::createImage(ctx, VK_IMAGE_TYPE_3D, bake::kFeatureFieldFormat, {1, 1, 1},
-                         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                             (storageImages ? VK_IMAGE_USAGE_STORAGE_BIT : VkImageUsageFlags(0)));
+    m_none = gpu::createImage(
+        ctx, VK_IMAGE_TYPE_3D, bake::kFeatureFieldFormat, {1, 1, 1},
+        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
+            (storageImages ? VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT} : VkImageUsageFlags{0}));
     const uint16_t zero = 0; // one half float
     gpu::uploadImage(ctx, m_none, &zero, sizeof zero, bake::kFeatureLayout,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
@@ -79,6 +79,7 @@ void FeatureFields::keepOnly(const std::vector<OperatorSpec>& specs, const GpuVo
         if (spec.alignment.mode != AlignmentMode::Axis)
             wanted.insert(describe(spec.alignment, volume).key);
     std::erase_if(m_fields, [&](const auto& field) { return !wanted.count(field.first); });
+    m_inUse.clear(); // a new frame
 }
 
 gpu::Image FeatureFields::indicatorTexture(const OperatorSpec& spec,
@@ -103,6 +104,8 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
     if (id) *id = 0;
     if (a.mode == AlignmentMode::Axis) return m_none;
     const auto [k, note] = describe(a, volume);
+    const std::string inUse = spec.name + ": " + note;
+    if (std::find(m_inUse.begin(), m_inUse.end(), inUse) == m_inUse.end()) m_inUse.push_back(inUse);
     auto found = m_fields.find(k);
     if (found != m_fields.end()) {
         if (id) *id = found->second.id;
@@ -124,7 +127,7 @@ const gpu::Image& FeatureFields::fieldFor(const OperatorSpec& spec, const GpuVol
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     char took[32];
     std::snprintf(took, sizeof took, "%.2f", seconds);
-    m_notes.push_back(spec.name + ": " + note + ", baked in " + took + " s");
+    m_notes.push_back(inUse + ", baked in " + took + " s");
     ++m_bakes;
     // The ranges' steps: DT in half millimetres, up to 63.5 mm (a deeper tau
     // falls back to the bricks: FieldRanges::resolves); M in hundredths.

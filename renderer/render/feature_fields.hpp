@@ -54,6 +54,11 @@ public:
     /// One line per field baked since the last call, e.g. "surface alignment:
     /// distance field at threshold 0.2 (Otsu), 0.31 s".
     std::vector<std::string> takeNotes();
+    /// What each field fieldFor gave since the last keepOnly (this frame's)
+    /// is, one line per field, without times ("peeler: distance field of the
+    /// object above 0.2 (Otsu's threshold)"): the same for every frame that
+    /// reads the same fields, whether it baked them or not.
+    const std::vector<std::string>& fieldsInUse() const { return m_inUse; }
     int bakes() const { return m_bakes; }
 
 private:
@@ -90,6 +95,7 @@ private:
     std::map<FieldKey, Field> m_fields;
     std::uint64_t m_nextId = 1;
     std::vector<std::string> m_notes;
+    std::vector<std::string> m_inUse;
     int m_bakes = 0;
 };
 

@@ -65,6 +65,8 @@ public:
     void setCensus(bool on) { m_census = on; }
     /// Feature-field bakes since the last call, one line each (see FeatureFields).
     std::vector<std::string> takeNotes() { return m_operators->features().takeNotes(); }
+    /// The feature fields the last frame read, one line each (FeatureFields).
+    std::vector<std::string> fieldsInUse() const { return m_operators->features().fieldsInUse(); }
     /// Stand-in storage images made so far (bake::ValueStorageBindings): none
     /// where the tuning takes no storage paths.
     int storageStandIns() const { return m_storage.standIns(); }

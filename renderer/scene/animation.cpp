@@ -1,6 +1,8 @@
 #include "scene/animation.hpp"
 
 #include "core/error.hpp"
+#include "io/json_limits.hpp"
+#include "scene/json_reader.hpp"
 
 #include <algorithm>
 
@@ -32,7 +34,7 @@ std::string pointerWriteProblem(const nlohmann::json& document, const std::strin
     // Built piecewise: GCC 12 warns (-Wrestrict, falsely) on "x" + substr.
     const auto atPrefix = [&](std::size_t length, const char* problem) {
         std::string message = "\"";
-        message += target.substr(0, length);
+        message += abbreviatePointer(target.substr(0, length));
         message += problem;
         return message;
     };
@@ -50,7 +52,7 @@ std::string pointerWriteProblem(const nlohmann::json& document, const std::strin
         } else if (node->is_array()) {
             if (!digits || token.empty() || token.size() > 9 ||
                 (token.size() > 1 && token[0] == '0') || std::stoul(token) >= node->size())
-                return "\"" + token + "\" is not an index of an array of " +
+                return "\"" + abbreviate(token) + "\" is not an index of an array of " +
                        std::to_string(node->size());
             node = &(*node)[std::stoul(token)];
         } else if (node->is_object()) {
@@ -99,7 +101,8 @@ nlohmann::json applyTracks(const nlohmann::json& document, const Animation& anim
         const std::string problem = pointerWriteProblem(out, track.target);
         if (!problem.empty())
             throw InputError(source + ": /animation/tracks/" + std::to_string(i) +
-                             "/target: cannot write " + track.target + ": " + problem);
+                             "/target: cannot write " + abbreviatePointer(track.target) + ": " +
+                             problem);
         out[nlohmann::json::json_pointer(track.target)] = value;
     }
     return out;
@@ -108,17 +111,23 @@ nlohmann::json applyTracks(const nlohmann::json& document, const Animation& anim
 SceneSetting parseSetting(const std::string& assignment) {
     const std::size_t eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0 || assignment[0] != '/')
-        throw InputError("--set " + assignment +
+        throw InputError("--set " + abbreviate(assignment) +
                          ": expected /json/pointer=VALUE, e.g. /camera/orbit/azimuth=90");
     SceneSetting setting;
     setting.pointer = assignment.substr(0, eq);
+    const std::string name = "--set " + abbreviatePointer(setting.pointer);
     try {
         (void)nlohmann::json::json_pointer(setting.pointer);
     } catch (const nlohmann::json::exception&) {
-        throw InputError("--set " + assignment + ": \"" + setting.pointer +
-                         "\" is not a JSON pointer");
+        throw InputError(name + ": " + describeValue(setting.pointer) + " is not a JSON pointer");
     }
+    // The bounds of a scene file's text (io/json_limits.hpp) hold here too.
     const std::string text = assignment.substr(eq + 1);
+    if (text.size() > kMaxSceneStringBytes)
+        throw InputError(name + ": a value of " + std::to_string(text.size() >> 10) +
+                         " KiB, more than the " + std::to_string(kMaxSceneStringBytes >> 10) +
+                         " KiB a scene's value may be");
+    checkJsonText(text, name, JsonLimits{kMaxJsonDepth, kMaxSceneStringBytes});
     setting.value = nlohmann::json::parse(text, nullptr, false);
     if (setting.value.is_discarded()) setting.value = text;
     return setting;
@@ -155,7 +164,8 @@ void applySettings(nlohmann::json& document, const std::vector<SceneSetting>& se
     for (const SceneSetting& s : settings) {
         const std::string problem = pointerWriteProblem(document, s.pointer);
         if (!problem.empty())
-            throw InputError("--set " + s.pointer + ": cannot write there: " + problem);
+            throw InputError("--set " + abbreviatePointer(s.pointer) +
+                             ": cannot write there: " + problem);
         document[nlohmann::json::json_pointer(s.pointer)] = s.value;
         dropTracksOverriddenBy(document, s.pointer);
     }

@@ -75,8 +75,15 @@ struct IntegerRange {
 
 /// Shortest text that reads back as the same double ("0.05", "10000", "1e+30").
 std::string formatNumber(double value);
-/// A JSON value as text, cut to about `maxChars` characters ("..." marks a cut).
+/// A JSON value as text, cut to about `maxChars` characters ("..." marks a cut);
+/// its cost does not grow with the value's size or depth.
 std::string describeValue(const nlohmann::json& value, std::size_t maxChars = 40);
+/// `text` cut to about `maxChars` characters ("..." marks a cut, never inside
+/// a UTF-8 sequence): for a pointer or an argument quoted in a message.
+std::string abbreviate(std::string_view text, std::size_t maxChars = 40);
+/// A JSON pointer with each token longer than about 40 characters cut (an
+/// unknown key of a megabyte), as messages show pointers.
+std::string abbreviatePointer(std::string_view pointer);
 /// Edit distance: insertions, deletions, substitutions and swaps of two
 /// neighbouring characters, one edit each (optimal string alignment).
 std::size_t editDistance(std::string_view a, std::string_view b);
@@ -87,9 +94,10 @@ std::optional<std::string> closestMatch(std::string_view word,
 std::string escapePointerToken(std::string_view key);
 
 /// Parses JSON text. Syntax errors throw InputError "SOURCE:LINE:COLUMN: JSON
-/// syntax error: ...". Documents nested deeper than `maxDepth` arrays/objects
-/// are rejected before parsing (the parser recurses once per level).
-nlohmann::json parseJsonText(std::string_view text, const std::string& source, int maxDepth = 64);
+/// syntax error: ...". Text past the bounds of io/json_limits.hpp (larger
+/// than kMaxSceneBytes, nested deeper than kMaxJsonDepth arrays/objects, a
+/// string longer than kMaxSceneStringBytes) is refused before parsing.
+nlohmann::json parseJsonText(std::string_view text, const std::string& source);
 
 /// Reads one JSON object. Getters mark their key as known; `finish()` reports
 /// every present key that no getter asked about. A value that is not an object

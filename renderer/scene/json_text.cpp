@@ -1,6 +1,7 @@
 // The text side of json_reader.hpp: diagnostics, value formatting, typo
 // suggestions, and parsing JSON text with positioned syntax errors.
 #include "core/error.hpp"
+#include "io/json_limits.hpp"
 #include "scene/json_reader.hpp"
 
 #include <algorithm>
@@ -18,7 +19,7 @@ namespace cutaway {
 void Diagnostics::error(std::string_view pointer, std::string_view message) {
     std::string line = m_source;
     line += ": ";
-    line += pointer.empty() ? std::string_view("(root)") : pointer;
+    line += pointer.empty() ? std::string("(root)") : abbreviatePointer(pointer);
     line += ": ";
     line += message;
     m_messages.push_back(std::move(line));
@@ -74,19 +75,71 @@ std::string formatNumber(double value) {
     return std::string(buffer.data(), result.ptr);
 }
 
-std::string describeValue(const nlohmann::json& value, std::size_t maxChars) {
-    std::string text = value.is_number_float()
-                           ? formatNumber(value.get<double>())
-                           : value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-    if (text.size() > maxChars && maxChars > 3) {
-        text.resize(maxChars - 3);
-        // Do not cut a UTF-8 sequence in half.
-        while (!text.empty() && (static_cast<unsigned char>(text.back()) & 0xC0) == 0x80)
-            text.pop_back();
-        if (!text.empty() && (static_cast<unsigned char>(text.back()) & 0x80) != 0) text.pop_back();
-        text += "...";
+namespace {
+
+// Appends `value` as compact JSON (as dump() writes it) to `out`, stopping
+// soon after `out` passes `limit` bytes, so that a 10 MB string or 60,000
+// arrays inside each other cost no more than a short value. The recursion
+// is as deep as `limit` at most: every level appends a bracket first.
+void appendJson(const nlohmann::json& value, std::string& out, std::size_t limit) {
+    constexpr auto kReplace = nlohmann::json::error_handler_t::replace;
+    if (out.size() > limit) return;
+    if (value.is_string()) {
+        // Enough of the string to pass the limit; dump() escapes it.
+        const std::string& text = value.get_ref<const std::string&>();
+        const std::size_t room = limit - out.size() + 8;
+        out += nlohmann::json(text.substr(0, room)).dump(-1, ' ', false, kReplace);
+        return;
     }
-    return text;
+    if (!value.is_structured()) {
+        out += value.dump(-1, ' ', false, kReplace);
+        return;
+    }
+    const bool array = value.is_array();
+    out += array ? '[' : '{';
+    bool first = true;
+    for (auto it = value.begin(); it != value.end() && out.size() <= limit; ++it) {
+        if (!first) out += ',';
+        first = false;
+        if (!array) {
+            appendJson(nlohmann::json(it.key().substr(0, limit)), out, limit);
+            out += ':';
+        }
+        appendJson(*it, out, limit);
+    }
+    out += array ? ']' : '}';
+}
+
+} // namespace
+
+std::string abbreviate(std::string_view text, std::size_t maxChars) {
+    if (text.size() <= maxChars || maxChars <= 3) return std::string(text);
+    std::string cut(text.substr(0, maxChars - 3));
+    // Do not cut a UTF-8 sequence in half.
+    while (!cut.empty() && (static_cast<unsigned char>(cut.back()) & 0xC0) == 0x80)
+        cut.pop_back();
+    if (!cut.empty() && (static_cast<unsigned char>(cut.back()) & 0x80) != 0) cut.pop_back();
+    return cut + "...";
+}
+
+std::string abbreviatePointer(std::string_view pointer) {
+    constexpr std::size_t kLongestToken = 40;
+    std::string shown;
+    std::size_t start = 0;
+    while (start < pointer.size()) {
+        std::size_t end = pointer.find('/', start + 1);
+        if (end == std::string_view::npos) end = pointer.size();
+        shown += abbreviate(pointer.substr(start, end - start), kLongestToken);
+        start = end;
+    }
+    return abbreviate(shown, 5 * kLongestToken); // a pointer of many tokens
+}
+
+std::string describeValue(const nlohmann::json& value, std::size_t maxChars) {
+    if (value.is_number_float()) return abbreviate(formatNumber(value.get<double>()), maxChars);
+    std::string text;
+    appendJson(value, text, maxChars);
+    return abbreviate(text, maxChars);
 }
 
 std::size_t editDistance(std::string_view a, std::string_view b) {
@@ -124,6 +177,10 @@ std::string lowercase(std::string_view text) {
 
 std::optional<std::string> closestMatch(std::string_view word,
                                         const std::vector<std::string>& candidates) {
+    // No key is this long; the edit distance would take time and memory
+    // in proportion to the word's length.
+    constexpr std::size_t kLongestCandidate = 64;
+    if (word.size() > kLongestCandidate) return std::nullopt;
     const std::string lower = lowercase(word);
     std::optional<std::string> best;
     std::size_t bestDistance = 0;
@@ -155,60 +212,6 @@ std::string escapePointerToken(std::string_view key) {
 
 namespace {
 
-struct TextPosition {
-    std::size_t line = 1;
-    std::size_t column = 0;
-};
-
-/// Line and column (1-based) after reading the first `count` characters, the
-/// way nlohmann counts them (a newline starts line + 1 at column 0).
-TextPosition positionAfter(std::string_view text, std::size_t count) {
-    TextPosition position;
-    for (std::size_t i = 0; i < count; ++i) { // the end of input counts as one character
-        if (i < text.size() && text[i] == '\n') {
-            ++position.line;
-            position.column = 0;
-        } else {
-            ++position.column;
-        }
-    }
-    return position;
-}
-
-std::string located(const std::string& source, TextPosition position) {
-    return source + ":" + std::to_string(position.line) + ":" + std::to_string(position.column);
-}
-
-/// Rejects documents nested deeper than `maxDepth` without recursing.
-void checkNesting(std::string_view text, const std::string& source, int maxDepth) {
-    int depth = 0;
-    bool inString = false;
-    bool escaped = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (inString) {
-            if (escaped)
-                escaped = false;
-            else if (c == '\\')
-                escaped = true;
-            else if (c == '"')
-                inString = false;
-            continue;
-        }
-        if (c == '"') {
-            inString = true;
-        } else if (c == '[' || c == '{') {
-            if (++depth > maxDepth) {
-                throw InputError(located(source, positionAfter(text, i + 1)) +
-                                 ": nesting deeper than " + std::to_string(maxDepth) +
-                                 " levels (arrays and objects inside each other)");
-            }
-        } else if (c == ']' || c == '}') {
-            if (depth > 0) --depth; // unbalanced text is left for the parser to report
-        }
-    }
-}
-
 /// The part of an nlohmann message after "[json.exception...] parse error at line L, column C: ".
 std::string parserReason(const std::string& what) {
     const std::size_t columnAt = what.find("column ");
@@ -227,12 +230,16 @@ std::string parserReason(const std::string& what) {
 
 } // namespace
 
-nlohmann::json parseJsonText(std::string_view text, const std::string& source, int maxDepth) {
-    checkNesting(text, source, maxDepth);
+nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
+    if (text.size() > kMaxSceneBytes)
+        throw InputError(source + ": " + std::to_string(text.size() >> 20) +
+                         " MiB of JSON, more than the " + std::to_string(kMaxSceneBytes >> 20) +
+                         " MiB a scene may hold");
+    checkJsonText(text, source, JsonLimits{kMaxJsonDepth, kMaxSceneStringBytes});
     try {
         return nlohmann::json::parse(text.begin(), text.end());
     } catch (const nlohmann::json::parse_error& e) {
-        throw InputError(located(source, positionAfter(text, e.byte)) +
+        throw InputError(textLocation(text, e.byte, source) +
                          ": JSON syntax error: " + parserReason(e.what()));
     } catch (const nlohmann::json::exception& e) {
         // A number too large for a double ("number overflow parsing '1e400'"):
@@ -244,7 +251,7 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source, i
             const std::string token = what.substr(open + 1, close - open - 1);
             const std::size_t at = text.find(token);
             if (at != std::string_view::npos) {
-                throw InputError(located(source, positionAfter(text, at + 1)) +
+                throw InputError(textLocation(text, at + 1, source) +
                                  ": expected a number that fits a double, got " + token);
             }
         }

@@ -53,8 +53,9 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
                 if (other.empty() ||
                     !(pointerWithin(*target, other) || pointerWithin(other, *target)))
                     continue;
-                t.error("target", "\"" + *target + "\" writes what track " + std::to_string(j) +
-                                      " (\"" + other + "\") writes; give each value one track");
+                t.error("target", describeValue(*target) + " writes what track " +
+                                      std::to_string(j) + " (" + describeValue(other) +
+                                      ") writes; give each value one track");
                 break;
             }
             try {
@@ -62,12 +63,12 @@ void parseAnimation(JsonReader& reader, Animation& animation) {
                 if (pointer.empty() || track.target.rfind("/animation", 0) == 0 ||
                     track.target == "/version")
                     t.error("target", "expected a pointer to a value of the scene outside "
-                                      "/animation and /version, got \"" +
-                                          track.target + "\"");
+                                      "/animation and /version, got " +
+                                          describeValue(track.target));
             } catch (const nlohmann::json::exception&) {
                 t.error("target", "expected a JSON pointer such as \"/camera/orbit/azimuth\", "
-                                  "got \"" +
-                                      track.target + "\"");
+                                  "got " +
+                                      describeValue(track.target));
             }
         }
         const std::string interpolation =

@@ -2,6 +2,8 @@
 // /render and /output sections. The other sections are parsed in
 // scene_volume.cpp and scene_camera.cpp.
 #include "core/error.hpp"
+#include "io/input_file.hpp"
+#include "io/json_limits.hpp"
 #include "scene/animation.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/scene.hpp"
@@ -9,9 +11,6 @@
 #include "shared/operator_frame.h"
 
 #include <algorithm>
-#include <cerrno>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -150,7 +149,8 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     scene.baseDir = baseDir;
     JsonReader root(document, diagnostics);
     if (const nlohmann::json* version = root.find("version")) {
-        if (!(version->is_number_integer() && version->get<std::int64_t>() == 1)) {
+        // 1.0 is 1 too (JSON Schema counts a number with a zero fraction an integer).
+        if (!(version->is_number() && version->get<double>() == 1.0)) {
             root.error("version",
                        "unsupported version: expected 1, got " + describeValue(*version));
         }
@@ -219,20 +219,10 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
 
 Scene loadScene(const std::filesystem::path& file, const std::vector<SceneSetting>& settings) {
     const std::string source = file.string();
-    std::error_code ec;
-    if (std::filesystem::is_directory(file, ec))
-        throw InputError(source + ": cannot read scene (it is a folder)");
-    std::ifstream stream(file, std::ios::binary);
-    if (!stream) {
-        const std::string reason = std::error_code(errno, std::generic_category()).message();
-        throw InputError(source + ": cannot read scene (" + reason + ")");
-    }
-    std::ostringstream text;
-    text << stream.rdbuf();
-    if (stream.bad()) throw InputError(source + ": cannot read scene (read error)");
-
-    nlohmann::json document = parseJsonText(text.str(), source);
+    const std::string text = InputFile(file, "scene").readAll(kMaxSceneBytes);
+    nlohmann::json document = parseJsonText(text, source);
     applySettings(document, settings);
+    std::error_code ec;
     const std::filesystem::path absolute = std::filesystem::absolute(file, ec);
     const std::filesystem::path baseDir = (ec ? file : absolute).lexically_normal().parent_path();
     Scene scene =

@@ -1,9 +1,12 @@
 // The /volume and /transfer sections of a scene document.
+#include "io/input_file.hpp"
 #include "scene/scene_sections.hpp"
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <string>
+#include <sys/stat.h>
 #include <system_error>
 
 namespace cutaway::scene_detail {
@@ -70,13 +73,20 @@ std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
                                        const std::filesystem::path& baseDir) {
     const auto file = reader.string(key);
     if (!file) return {};
+    // No file has such a name: the system would look up a shorter one, or none.
+    if (file->find('\0') != std::string::npos || file->size() >= PATH_MAX) {
+        reader.expected(reader.pointerOf(key),
+                        "a path without NUL characters, of fewer than " + std::to_string(PATH_MAX) +
+                            " bytes",
+                        *reader.find(key));
+        return {};
+    }
     const std::filesystem::path path = (baseDir / *file).lexically_normal();
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (!std::filesystem::exists(status))
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0)
         reader.error(key, "no such file: " + path.string());
-    else if (!std::filesystem::is_regular_file(status))
-        reader.error(key, "not a regular file: " + path.string());
+    else if (const char* kind = nonRegularKind(status.st_mode))
+        reader.error(key, std::string("not a regular file (it is ") + kind + "): " + path.string());
     return path;
 }
 

@@ -57,30 +57,6 @@ void checkSpacing(double spacing, int axis, std::string_view context) {
     }
 }
 
-std::uint64_t regularFileSize(const std::filesystem::path& path) {
-    std::error_code ec;
-    const auto status = std::filesystem::status(path, ec);
-    if (!std::filesystem::exists(status)) {
-        throw InputError(path.string() + ": no such file");
-    }
-    if (std::filesystem::is_directory(status)) {
-        throw InputError(path.string() + ": is a directory, not a volume file");
-    }
-    const auto size = std::filesystem::file_size(path, ec);
-    if (ec) {
-        throw InputError(path.string() + ": cannot read (" + ec.message() + ")");
-    }
-    return size;
-}
-
-std::ifstream openBinary(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        throw InputError(path.string() + ": cannot open for reading");
-    }
-    return in;
-}
-
 MemoryBuffer::MemoryBuffer(std::span<const std::byte> bytes) {
     // The get area is only read from: std::streambuf just wants non-const pointers.
     char* begin = const_cast<char*>(reinterpret_cast<const char*>(bytes.data()));

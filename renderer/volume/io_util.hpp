@@ -27,13 +27,6 @@ std::size_t checkedByteCount(const std::int64_t sizes[3], VoxelType type, std::s
 /// Spacing must be finite and > 0; `axis` is 0, 1, 2 for x, y, z.
 void checkSpacing(double spacing, int axis, std::string_view context);
 
-/// Throws InputError "PATH: no such file" / "PATH: is a directory ..." unless
-/// `path` is a readable regular file; returns its size in bytes.
-std::uint64_t regularFileSize(const std::filesystem::path& path);
-
-/// Opens a file for binary reading (checked with regularFileSize first).
-std::ifstream openBinary(const std::filesystem::path& path);
-
 /// A read-only, seekable stream buffer over bytes in memory (not copied: they
 /// must outlive it), so the readers take `std::istream in(&buffer)` as they
 /// take a file.

@@ -2,6 +2,7 @@
 // Geometry from the sform, else the qform, converted from RAS to LPS (volume.hpp).
 // https://nifti.nimh.nih.gov/nifti-1/documentation/nifti1fields
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/gzip.hpp"
 #include "volume/io_util.hpp"
@@ -334,9 +335,8 @@ Volume readNiftiStream(std::istream& in, std::uint64_t fileSize, const std::stri
 } // namespace
 
 Volume readNifti(const std::filesystem::path& path) {
-    const std::uint64_t size = detail::regularFileSize(path);
-    std::ifstream in = detail::openBinary(path);
-    return readNiftiStream(in, size, path.string());
+    InputFile file(path, "volume");
+    return readNiftiStream(file.stream(), file.size(), path.string());
 }
 
 Volume readNiftiBytes(std::span<const std::byte> bytes, const std::string& name) {

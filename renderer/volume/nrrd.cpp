@@ -4,6 +4,7 @@
 // Geometry from `space` (or `space dimension`), `space directions` and `space
 // origin`, anatomical spaces converted to LPS (volume.hpp); else `spacings`.
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/gzip.hpp"
 #include "volume/io_util.hpp"
@@ -276,7 +277,7 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
     if (lineSkip < 0) throw InputError(ctx + ": invalid line skip " + std::to_string(lineSkip));
 
     // The data: after the header's blank line, or in a detached data file.
-    std::ifstream detached;
+    std::optional<InputFile> detached;
     std::istream* data = &in;
     std::string dataCtx = ctx;
     std::uint64_t dataFileSize = headerFileSize;
@@ -293,14 +294,10 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
         }
         std::filesystem::path dataPath(name);
         if (dataPath.is_relative()) dataPath = *dataFolder / dataPath;
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(dataPath, ec)) {
-            throw InputError(ctx + ": data file '" + name + "' not found (looked at " +
-                             dataPath.string() + ")");
-        }
-        dataFileSize = detail::regularFileSize(dataPath);
-        detached = detail::openBinary(dataPath);
-        data = &detached;
+        detached.emplace(dataPath, "it",
+                         ctx + ": data file '" + name + "' (" + dataPath.string() + ")");
+        dataFileSize = detached->size();
+        data = &detached->stream();
         dataCtx = ctx + " (data file " + dataPath.string() + ")";
     } else if (!endedByBlankLine) {
         throw InputError(ctx + ": no data: the header has no blank line after it and no 'data "
@@ -365,15 +362,39 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
 } // namespace
 
 Volume readNrrd(const std::filesystem::path& path) {
-    const std::uint64_t size = detail::regularFileSize(path);
-    std::ifstream in = detail::openBinary(path);
-    return readNrrdStream(in, size, path.string(), path.parent_path());
+    InputFile file(path, "volume");
+    return readNrrdStream(file.stream(), file.size(), path.string(), path.parent_path());
 }
 
 Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name) {
     detail::MemoryBuffer buffer(bytes);
     std::istream in(&buffer);
     return readNrrdStream(in, bytes.size(), name, std::nullopt);
+}
+
+Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name,
+                     const std::filesystem::path& dataFolder) {
+    detail::MemoryBuffer buffer(bytes);
+    std::istream in(&buffer);
+    return readNrrdStream(in, bytes.size(), name, dataFolder);
+}
+
+std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path) {
+    std::vector<std::filesystem::path> files{path};
+    const std::string name = detail::toLower(path.filename().string());
+    if (!name.ends_with(".nrrd") && !name.ends_with(".nhdr")) return files;
+    try {
+        InputFile file(path, "volume");
+        bool endedByBlankLine = false;
+        const detail::NrrdFields f = readNrrdHeader(file.stream(), path.string(), endedByBlankLine);
+        if (f.dataFile) {
+            const std::filesystem::path data(std::string(trim(*f.dataFile)));
+            files.push_back(data.is_relative() ? path.parent_path() / data : data);
+        }
+    } catch (const InputError&) {
+        // Reading the volume says what is wrong with it.
+    }
+    return files;
 }
 
 } // namespace cutaway

@@ -16,7 +16,7 @@ double otsuThreshold(const Volume& volume) {
     const std::size_t n = volume.voxelCount();
     for (std::size_t i = 0; i < n; ++i) {
         const double v = volume.value(i);
-        if (std::isnan(v)) continue;
+        if (!std::isfinite(v)) continue;
         const int bin = std::clamp(static_cast<int>((v - range.min) / width), 0, kBins - 1);
         histogram[std::size_t(bin)] += 1.0;
     }

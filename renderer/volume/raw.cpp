@@ -1,5 +1,6 @@
 // Headerless raw volumes: the caller supplies the layout.
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/io_util.hpp"
 #include "volume/volume.hpp"
@@ -12,7 +13,8 @@ Volume readRaw(const std::filesystem::path& path, const RawLayout& layout) {
     const std::size_t bytes = detail::checkedByteCount(sizes, layout.type, ctx);
     for (int a = 0; a < 3; ++a)
         detail::checkSpacing(layout.spacing[a], a, ctx);
-    const std::uint64_t fileSize = detail::regularFileSize(path);
+    InputFile file(path, "volume");
+    const std::uint64_t fileSize = file.size();
     if (layout.offset > fileSize) {
         throw InputError(ctx + ": offset " + std::to_string(layout.offset) +
                          " is beyond the end of the file (" + std::to_string(fileSize) + " bytes)");
@@ -22,7 +24,7 @@ Volume readRaw(const std::filesystem::path& path, const RawLayout& layout) {
                          " bytes after offset " + std::to_string(layout.offset) + ", found " +
                          std::to_string(fileSize - layout.offset));
     }
-    std::ifstream in = detail::openBinary(path);
+    std::istream& in = file.stream();
     in.seekg(static_cast<std::streamoff>(layout.offset));
     Volume volume;
     volume.dims = layout.dims;

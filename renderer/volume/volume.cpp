@@ -1,11 +1,13 @@
 #include "volume/volume.hpp"
 
 #include "core/error.hpp"
+#include "io/input_file.hpp"
 #include "volume/io_util.hpp"
 
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 namespace cutaway {
 
@@ -136,15 +138,54 @@ ValueRange valueRange(const Volume& volume) {
         const std::byte* p = volume.data.data();
         for (std::size_t i = 0; i < count; ++i) {
             const auto v = static_cast<double>(load<T>(p + i * sizeof(T)));
-            if (v < lo) lo = v; // NaN compares false both ways: skipped
+            if (!std::isfinite(v)) continue;
+            if (v < lo) lo = v;
             if (v > hi) hi = v;
         }
-        if (lo > hi) return ValueRange{}; // empty or all NaN
+        if (lo > hi) return ValueRange{}; // empty, or nothing finite
         double a = lo * volume.slope + volume.inter;
         double b = hi * volume.slope + volume.inter;
         if (a > b) std::swap(a, b); // a negative slope flips the order
         return ValueRange{a, b};
     });
+}
+
+namespace {
+
+/// Counts the voxels of type T that are NaN or infinite, writing `with`
+/// over each when given.
+template <typename T>
+std::size_t nonFiniteIn(std::byte* data, std::size_t count, std::optional<T> with) {
+    std::size_t found = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        T value;
+        std::memcpy(&value, data + i * sizeof(T), sizeof(T));
+        if (std::isfinite(value)) continue;
+        ++found;
+        if (with) std::memcpy(data + i * sizeof(T), &*with, sizeof(T));
+    }
+    return found;
+}
+
+std::size_t nonFinite(Volume& volume, std::optional<double> with) {
+    const std::size_t count =
+        std::min(volume.voxelCount(), volume.data.size() / voxelSize(volume.type));
+    if (volume.type == VoxelType::F32) {
+        const auto raw = with ? std::optional<float>(static_cast<float>(*with)) : std::nullopt;
+        return nonFiniteIn<float>(volume.data.data(), count, raw);
+    }
+    if (volume.type == VoxelType::F64) return nonFiniteIn<double>(volume.data.data(), count, with);
+    return 0; // integers are always finite
+}
+
+} // namespace
+
+std::size_t nonFiniteCount(const Volume& volume) {
+    return nonFinite(const_cast<Volume&>(volume), std::nullopt); // nothing is written
+}
+
+std::size_t replaceNonFinite(Volume& volume, double value) {
+    return nonFinite(volume, (value - volume.inter) / volume.slope);
 }
 
 namespace {
@@ -157,7 +198,7 @@ bool endsWith(const std::string& text, std::string_view suffix) {
 } // namespace
 
 Volume readVolume(const std::filesystem::path& path) {
-    detail::regularFileSize(path); // "no such file" before any talk of extensions
+    (void)InputFile(path, "volume"); // "no such file" before any talk of extensions
     const std::string name = detail::toLower(path.filename().string());
     if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return readNrrd(path);
     if (endsWith(name, ".nii") || endsWith(name, ".nii.gz")) return readNifti(path);

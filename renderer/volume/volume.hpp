@@ -78,12 +78,19 @@ struct Volume {
     static Volume allocate(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing = glm::dvec3(1.0));
 };
 
-/// Minimum and maximum physical value (NaN voxels ignored; an all-NaN volume gives {0, 0}).
+/// Minimum and maximum physical value of the finite voxels (NaN and infinite
+/// ones are left out; a volume with none finite gives {0, 0}).
 struct ValueRange {
     double min = 0.0;
     double max = 0.0;
 };
 ValueRange valueRange(const Volume& volume);
+
+/// How many voxels are NaN or infinite (only floating-point volumes hold such).
+std::size_t nonFiniteCount(const Volume& volume);
+
+/// Gives every NaN or infinite voxel the physical value `value`; returns how many.
+std::size_t replaceNonFinite(Volume& volume, double value);
 
 /// Layout of a headerless raw file.
 struct RawLayout {
@@ -100,10 +107,18 @@ Volume readVolume(const std::filesystem::path& path);
 Volume readNrrd(const std::filesystem::path& path);
 Volume readNifti(const std::filesystem::path& path);
 Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
+/// The files reading the volume `path` reads: the file itself and, for a
+/// detached NRRD header, its data file. A header that cannot be read gives
+/// the file alone (reading it then says what is wrong).
+std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path);
 /// The NRRD and NIfTI readers over a file's bytes already in memory (not
 /// copied); `name` stands for the file in messages. A NRRD header read this way
 /// cannot name a detached data file (there is no folder to find it in).
 Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name);
+/// A detached NRRD header's bytes, its data file looked up in `dataFolder`
+/// (read as readNrrd reads it: io/input_file.hpp).
+Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name,
+                     const std::filesystem::path& dataFolder);
 Volume readNiftiBytes(std::span<const std::byte> bytes, const std::string& name);
 
 /// Writes an attached-header NRRD (raw or gzip encoding), native voxel type,

@@ -60,6 +60,12 @@ TEST(FuzzReplay, NrrdCorpus) {
 TEST(FuzzReplay, NiftiCorpus) {
     EXPECT_GE(replay("corpus", "nifti", fuzz::fuzzNifti), 8u);
 }
+TEST(FuzzReplay, NhdrCorpus) {
+    EXPECT_GE(replay("corpus", "nhdr", fuzz::fuzzNhdr), 6u);
+}
+TEST(FuzzReplay, GltfCorpus) {
+    EXPECT_GE(replay("corpus", "gltf", fuzz::fuzzGltf), 2u);
+}
 TEST(FuzzReplay, SceneRegressions) {
     replay("regressions", "scene", fuzz::fuzzScene);
 }
@@ -68,6 +74,12 @@ TEST(FuzzReplay, NrrdRegressions) {
 }
 TEST(FuzzReplay, NiftiRegressions) {
     replay("regressions", "nifti", fuzz::fuzzNifti);
+}
+TEST(FuzzReplay, NhdrRegressions) {
+    EXPECT_GE(replay("regressions", "nhdr", fuzz::fuzzNhdr), 3u);
+}
+TEST(FuzzReplay, GltfRegressions) {
+    EXPECT_GE(replay("regressions", "gltf", fuzz::fuzzGltf), 3u);
 }
 
 } // namespace cutaway::test

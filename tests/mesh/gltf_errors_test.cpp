@@ -102,7 +102,7 @@ TEST(GltfErrors, IndexOutOfRange) {
 
 TEST(GltfErrors, MissingFileAndUnknownExtension) {
     TempDir dir;
-    expectError(dir / "absent.glb", "file not found");
+    expectError(dir / "absent.glb", "absent.glb: cannot read glTF model (no such file)");
     writeText(dir / "tool.obj", "v 0 0 0\n");
     expectError(dir / "tool.obj", "unknown extension \".obj\"");
 }

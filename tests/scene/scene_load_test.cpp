@@ -42,14 +42,6 @@ TEST(SceneLoad, RelativeSceneFileGivesAbsoluteBaseDir) {
     EXPECT_EQ(scene.file, fs::path("s/a.json"));
 }
 
-TEST(SceneLoad, MissingOrUnreadableFiles) {
-    test::TempDir dir;
-    const fs::path missing = dir.path() / "none.json";
-    EXPECT_EQ(loadError(missing),
-              missing.string() + ": cannot read scene (No such file or directory)");
-    EXPECT_EQ(loadError(dir.path()), dir.path().string() + ": cannot read scene (it is a folder)");
-}
-
 TEST(SceneLoad, ErrorsNameTheFile) {
     test::TempDir dir;
     const fs::path file = dir.write("a.json", R"({"version": 1, "volume": {"phantom": "x"}})");

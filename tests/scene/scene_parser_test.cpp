@@ -266,7 +266,8 @@ TEST(SceneParser, MissingVolumeFileNamesPointerAndPath) {
     EXPECT_EQ(message, "scene.json: /volume/file: no such file: " +
                            (dir.path() / "data/none.nii.gz").string());
     EXPECT_EQ(parseError(json::parse(R"({"version": 1, "volume": {"file": "."}})"), dir.path()),
-              "scene.json: /volume/file: not a regular file: " + dir.path().string() + "/");
+              "scene.json: /volume/file: not a regular file (it is a folder): " +
+                  dir.path().string() + "/");
     // A name the system refuses to look up (found by fuzz_scene: it threw filesystem_error).
     json tooLong = json::parse(R"({"version": 1, "volume": {}})");
     tooLong["volume"]["file"] = std::string(300, 'x') + ".nrrd";

@@ -1,5 +1,6 @@
 // Hostile and broken volume files end in an InputError that names the file
 // and says what is wrong; never a crash, a hang or a huge allocation.
+#include "io/named_pipe.hpp"
 #include "volume_test_util.hpp"
 
 namespace cutaway::test {
@@ -132,6 +133,52 @@ TEST_F(MalformedVolumes, MissingFilesFoldersAndUnknownExtensions) {
     const std::string message = inputError([&] { readVolume(other); });
     EXPECT_NE(message.find("scan.dcm"), std::string::npos) << message;
     EXPECT_NE(message.find(".nrrd"), std::string::npos) << "should list what is supported";
+}
+
+TEST_F(MalformedVolumes, OnlyRegularFilesAreReadAndTheMessageSaysWhatTheOthersAre) {
+    std::filesystem::create_directories(path("folder.raw"));
+    const NamedPipe pipe(path("pipe.raw"));
+    ASSERT_TRUE(pipe.made());
+    const std::string header = kGood + "data file: ";
+    struct Named {
+        std::string data;  // what the detached header names
+        std::string shown; // the path its message shows
+        std::string kind;
+    };
+    std::vector<Named> cases = {
+        {"folder.raw", path("folder.raw").string(), "it is a folder, not a regular file"},
+        {"pipe.raw", path("pipe.raw").string(), "it is a named pipe (FIFO), not a regular file"},
+        {"none.raw", path("none.raw").string(), "no such file"},
+    };
+    if (std::filesystem::exists("/dev/zero"))
+        cases.push_back({"/dev/zero", "/dev/zero", "it is a character device, not a regular file"});
+    for (const Named& c : cases) {
+        SCOPED_TRACE(c.data);
+        const auto nhdr = writeFile("h.nhdr", header + c.data + "\n");
+        EXPECT_EQ(inputError([&] { readVolume(nhdr); }), nhdr.string() + ": data file '" + c.data +
+                                                             "' (" + c.shown +
+                                                             "): cannot read it (" + c.kind + ")");
+    }
+    // The volume file itself, whatever its reader.
+    for (const char* name : {"folder.nii", "pipe.nrrd"}) {
+        SCOPED_TRACE(name);
+        if (std::string(name) == "folder.nii") std::filesystem::create_directories(path(name));
+        const NamedPipe other(path("pipe.nrrd"));
+        const std::string kind = std::string(name) == "folder.nii"
+                                     ? "it is a folder, not a regular file"
+                                     : "it is a named pipe (FIFO), not a regular file";
+        EXPECT_EQ(inputError([&] { readVolume(path(name)); }),
+                  path(name).string() + ": cannot read volume (" + kind + ")");
+        EXPECT_EQ(inputError([&] { readNrrd(path(name)); }),
+                  path(name).string() + ": cannot read volume (" + kind + ")");
+        EXPECT_EQ(inputError([&] { readNifti(path(name)); }),
+                  path(name).string() + ": cannot read volume (" + kind + ")");
+        EXPECT_FALSE(other.wasOpened());
+    }
+    EXPECT_FALSE(pipe.wasOpened()) << "a reader opened the pipe";
+    // The control: a regular data file is read.
+    writeFile("data.raw", std::string(64, '\x07'));
+    EXPECT_EQ(readVolume(writeFile("h.nhdr", header + "data.raw\n")).value(0), 7.0);
 }
 
 } // namespace cutaway::test

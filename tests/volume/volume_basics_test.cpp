@@ -48,6 +48,37 @@ TEST(VolumeBasics, ValueRangeSkipsNanAndFollowsScaling) {
     EXPECT_EQ(valueRange(u).max, 4e9) << "unsigned 32-bit values above 2^31";
 }
 
+TEST(VolumeBasics, InfiniteVoxelsAreLeftOutOfTheRangeAndCanBeReplaced) {
+    Volume v = Volume::allocate({5, 1, 1}, VoxelType::F64);
+    auto* d = reinterpret_cast<double*>(v.data.data());
+    d[0] = INFINITY;
+    d[1] = -1.5;
+    d[2] = 3.0;
+    d[3] = -INFINITY;
+    d[4] = NAN;
+    EXPECT_EQ(valueRange(v).min, -1.5); // was -inf
+    EXPECT_EQ(valueRange(v).max, 3.0);  // was inf: the window [min, inf] blanked the image
+    EXPECT_EQ(nonFiniteCount(v), 3u);
+    v.slope = 2.0;
+    v.inter = 1.0;
+    EXPECT_EQ(replaceNonFinite(v, -2.0), 3u); // the physical value -2: raw -1.5
+    EXPECT_EQ(nonFiniteCount(v), 0u);
+    EXPECT_EQ(v.value(0), -2.0);
+    EXPECT_EQ(v.value(3), -2.0);
+    EXPECT_EQ(v.value(4), -2.0);
+    EXPECT_EQ(v.value(2), 7.0) << "finite voxels stay";
+    Volume f = Volume::allocate({2, 1, 1}, VoxelType::F32);
+    reinterpret_cast<float*>(f.data.data())[1] = -INFINITY;
+    EXPECT_EQ(nonFiniteCount(f), 1u);
+    EXPECT_EQ(replaceNonFinite(f, 0.0), 1u);
+    EXPECT_EQ(f.value(1), 0.0);
+    // Integers are always finite.
+    Volume u = Volume::allocate({2, 1, 1}, VoxelType::U16);
+    EXPECT_EQ(nonFiniteCount(u), 0u);
+    EXPECT_EQ(replaceNonFinite(u, 5.0), 0u);
+    EXPECT_EQ(u.value(0), 0.0);
+}
+
 using NiftiDetails = VolumeFiles;
 
 TEST_F(NiftiDetails, PixdimZeroIsOneMillimetreAndUnitFourthDimension) {
