@@ -144,37 +144,62 @@ int writesInFlight(unsigned cores, std::size_t frameBytes) {
     return static_cast<int>(std::clamp<std::size_t>(byMemory, 1, byCores));
 }
 
-SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
-                               const SequenceOptions& options) {
-    const auto runStart = Clock::now();
-    checkOutputPaths(scene, options);
-    SequenceSummary summary;
-    if (options.skipExisting)
-        summary.removedTemporaries = removeStaleTemporariesOfRun(scene, options);
-    const auto stop = [&] { return options.stopRequested && options.stopRequested(); };
-    const std::vector<int> frames = framesToRender(scene, options);
-    std::unique_ptr<FrameRenderer> renderer; // made on the first frame that needs it
-    bool halted = false; // a failed frame under --fail-fast, a failed write, a limit
-    const auto report = [&](FrameEvent& event) {
-        if (event.kind == FrameEvent::Kind::Failed) {
-            ++summary.failed;
-            summary.anyBadInput = summary.anyBadInput || event.badInput;
-            halted = halted || options.failFast;
+namespace {
+
+// One run of renderSequence: the frames rendered in order, their files
+// written on other threads, each frame reported once its files are done
+// (in order), the run halted where the next frames would fail the same way.
+class SequenceRun {
+public:
+    SequenceRun(const gpu::Context& ctx, const Scene& scene, const SequenceOptions& options)
+        : m_ctx(ctx), m_scene(scene), m_options(options) {}
+
+    SequenceSummary run() {
+        checkOutputPaths(m_scene, m_options);
+        if (m_options.skipExisting)
+            m_summary.removedTemporaries = removeStaleTemporariesOfRun(m_scene, m_options);
+        const std::vector<int> frames = framesToRender(m_scene, m_options);
+        for (std::size_t i = 0; i < frames.size() && !m_halted; ++i) {
+            if (stopRequested()) break;
+            FrameEvent event;
+            event.frame = frames[i];
+            event.position = static_cast<int>(i) + 1;
+            event.total = static_cast<int>(frames.size());
+            if (!frame(std::move(event))) break;
         }
-        if (options.onFrame) options.onFrame(event);
-    };
-    std::deque<PendingWrite> pending; // earlier frames being written, oldest first
+        finishAll();
+        m_summary.volumeUploads = m_renderer ? m_renderer->uploads() : 0;
+        m_summary.totalSeconds = secondsSince(m_start);
+        return std::move(m_summary);
+    }
+
+private:
+    bool stopRequested() {
+        const bool stop = m_options.stopRequested && m_options.stopRequested();
+        if (stop) m_summary.stopped = true;
+        return stop;
+    }
+
+    void report(FrameEvent& event) {
+        if (event.kind == FrameEvent::Kind::Failed) {
+            ++m_summary.failed;
+            m_summary.anyBadInput = m_summary.anyBadInput || event.badInput;
+            m_halted = m_halted || m_options.failFast;
+        }
+        if (m_options.onFrame) m_options.onFrame(event);
+    }
+
     // Waits for the oldest pending frame's files and reports it; frames are
     // reported in order.
-    const auto finishOldest = [&] {
-        PendingWrite p = std::move(pending.front());
-        pending.pop_front();
+    void finishOldest() {
+        PendingWrite p = std::move(m_pending.front());
+        m_pending.pop_front();
         try {
             p.event.seconds = p.renderSeconds + p.writeSeconds.get();
             p.event.kind = FrameEvent::Kind::Rendered;
-            ++summary.rendered;
-            summary.frameSeconds.push_back(p.event.seconds);
-            summary.doneSeconds.push_back(secondsSince(runStart));
+            ++m_summary.rendered;
+            m_summary.frameSeconds.push_back(p.event.seconds);
+            m_summary.doneSeconds.push_back(secondsSince(m_start));
         } catch (const Error& e) {
             p.event.kind = FrameEvent::Kind::Failed;
             p.event.error = e.what();
@@ -182,105 +207,127 @@ SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
             p.event.seconds = p.renderSeconds;
             // A full disk, a vanished or read-only folder: later frames would
             // fail the same way after rendering for nothing.
-            summary.writeFailed = true;
-            halted = true;
+            m_summary.writeFailed = true;
+            m_halted = true;
         }
         report(p.event);
-    };
-    const auto finishAll = [&] {
-        while (!pending.empty())
+    }
+
+    void finishAll() {
+        while (!m_pending.empty())
             finishOldest();
-    };
+    }
+
     // Reports the frames whose files are written, and waits for the oldest
     // while `most` or more are pending.
-    const auto finishWritten = [&](std::size_t most) {
-        while (!pending.empty() && (pending.size() >= most ||
-                                    pending.front().writeSeconds.wait_for(
-                                        std::chrono::seconds(0)) == std::future_status::ready))
+    void finishWritten(std::size_t most) {
+        while (!m_pending.empty() && (m_pending.size() >= most ||
+                                      m_pending.front().writeSeconds.wait_for(
+                                          std::chrono::seconds(0)) == std::future_status::ready))
             finishOldest();
-    };
+    }
 
-    for (std::size_t i = 0; i < frames.size() && !halted; ++i) {
-        if (stop()) {
-            summary.stopped = true;
-            break;
-        }
-        FrameEvent event;
-        event.frame = frames[i];
-        event.position = static_cast<int>(i) + 1;
-        event.total = static_cast<int>(frames.size());
+    // Renders one frame and starts writing its files; false when the run
+    // must stop (a signal, a failed write, --fail-fast).
+    bool frame(FrameEvent event) {
         const auto frameStart = Clock::now();
         try {
-            Scene frameScene = sceneAtFrame(scene, event.frame);
-            applyOverrides(frameScene, options.overrides);
+            Scene frameScene = sceneAtFrame(m_scene, event.frame);
+            applyOverrides(frameScene, m_options.overrides);
             event.exr = expandPattern(frameScene.output.pattern, event.frame);
             if (frameScene.output.png) event.png = previewPath(event.exr);
-            if (options.skipExisting && std::filesystem::exists(event.exr) &&
+            if (m_options.skipExisting && std::filesystem::exists(event.exr) &&
                 (!event.png || std::filesystem::exists(*event.png))) {
                 finishAll();
                 event.kind = FrameEvent::Kind::Skipped;
-                ++summary.skipped;
+                ++m_summary.skipped;
                 report(event);
-                continue;
+                return true;
             }
-            if (!renderer) renderer = std::make_unique<FrameRenderer>(ctx);
-            Image image = renderer->render(frameScene);
+            if (!m_renderer) m_renderer = std::make_unique<FrameRenderer>(m_ctx);
+            Image image = m_renderer->render(frameScene);
             const double renderSeconds = secondsSince(frameStart);
-            event.notes = renderer->takeNotes();
-            for (const std::string& warning : renderer->takeWarnings())
-                event.warnings.push_back(scene.file.empty() ? warning
-                                                            : scene.file.string() + ": " + warning);
-            const std::size_t writers =
-                options.writers > 0
-                    ? static_cast<std::size_t>(std::min(options.writers, kMostWritersAllowed))
-                    : static_cast<std::size_t>(writesInFlight(std::thread::hardware_concurrency(),
-                                                              image.rgba.size() * sizeof(float)));
-            finishWritten(writers);
-            if (stop()) { // the frame in flight is discarded, never written
-                summary.stopped = true;
-                break;
-            }
-            if (halted) break; // an earlier frame failed to write, or under --fail-fast
-            ExrOptions exr;
-            exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
-            exr.compression = exrCompression(frameScene.output.compression);
-            exr.framesPerSecond = scene.animation.fps;
-            exr.attributes = {{"cutaway/frame", std::to_string(event.frame)},
-                              {"cutaway/fps", nlohmann::json(scene.animation.fps).dump()},
-                              {"cutaway/version", CUTAWAY_VERSION},
-                              {"cutaway/scene", recordedScene(frameScene).dump()}};
-            // The file records what the frame used, never when or how long
-            // (the bakes' times go to the terminal): files are the same
-            // whichever process, shard or rerun writes them.
-            const std::vector<std::string> used = renderer->fieldsInUse();
-            for (std::size_t n = 0; n < used.size(); ++n)
-                exr.attributes.push_back({"cutaway/note" + std::to_string(n), used[n]});
-            std::future<double> write =
-                writeFrameFiles(event.exr, event.png, std::move(image), std::move(exr));
-            pending.push_back(PendingWrite{std::move(event), renderSeconds, std::move(write)});
+            takeNotes(event);
+            finishWritten(writers(image));
+            if (stopRequested()) return false; // the frame in flight is discarded, never written
+            if (m_halted) return false; // an earlier frame failed to write, or under --fail-fast
+            std::future<double> write = writeFrameFiles(event.exr, event.png, std::move(image),
+                                                        exrOptions(frameScene, event.frame));
+            m_pending.push_back(PendingWrite{std::move(event), renderSeconds, std::move(write)});
         } catch (const Error& e) {
-            finishAll();
-            event.kind = FrameEvent::Kind::Failed;
-            event.error = e.what();
-            // A JSON pointer is a place in the scene file: name the file too.
-            if (event.error.starts_with('/') && !scene.file.empty() &&
-                !event.error.starts_with(scene.file.string()))
-                event.error = scene.file.string() + ": " + event.error;
-            event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
-            event.seconds = secondsSince(frameStart);
-            // Past a device limit or the memory budget, or with the device
-            // lost, the next frames would fail the same way.
-            if (dynamic_cast<const ResourceError*>(&e) != nullptr) {
-                summary.resourceExceeded = true;
-                halted = true;
-            }
-            report(event);
+            failed(event, e, frameStart);
         }
+        return true;
     }
-    finishAll();
-    summary.volumeUploads = renderer ? renderer->uploads() : 0;
-    summary.totalSeconds = secondsSince(runStart);
-    return summary;
+
+    // The frame's notes and warnings, the warnings naming the scene file.
+    void takeNotes(FrameEvent& event) {
+        event.notes = m_renderer->takeNotes();
+        for (const std::string& warning : m_renderer->takeWarnings())
+            event.warnings.push_back(m_scene.file.empty() ? warning
+                                                          : m_scene.file.string() + ": " + warning);
+    }
+
+    // How many frames' files may be written at once (SequenceOptions::writers).
+    std::size_t writers(const Image& image) const {
+        if (m_options.writers > 0)
+            return static_cast<std::size_t>(std::min(m_options.writers, kMostWritersAllowed));
+        return static_cast<std::size_t>(
+            writesInFlight(std::thread::hardware_concurrency(), image.rgba.size() * sizeof(float)));
+    }
+
+    ExrOptions exrOptions(const Scene& frameScene, int frame) const {
+        ExrOptions exr;
+        exr.halfFloat = frameScene.output.pixelType == PixelType::Half;
+        exr.compression = exrCompression(frameScene.output.compression);
+        exr.framesPerSecond = m_scene.animation.fps;
+        exr.attributes = {{"cutaway/frame", std::to_string(frame)},
+                          {"cutaway/fps", nlohmann::json(m_scene.animation.fps).dump()},
+                          {"cutaway/version", CUTAWAY_VERSION},
+                          {"cutaway/scene", recordedScene(frameScene).dump()}};
+        // The file records what the frame used, never when or how long (the
+        // bakes' times go to the terminal): files are the same whichever
+        // process, shard or rerun writes them.
+        const std::vector<std::string> used = m_renderer->fieldsInUse();
+        for (std::size_t n = 0; n < used.size(); ++n)
+            exr.attributes.push_back({"cutaway/note" + std::to_string(n), used[n]});
+        return exr;
+    }
+
+    void failed(FrameEvent& event, const Error& e, Clock::time_point frameStart) {
+        finishAll();
+        event.kind = FrameEvent::Kind::Failed;
+        event.error = e.what();
+        // A JSON pointer is a place in the scene file: name the file too.
+        if (event.error.starts_with('/') && !m_scene.file.empty() &&
+            !event.error.starts_with(m_scene.file.string()))
+            event.error = m_scene.file.string() + ": " + event.error;
+        event.badInput = dynamic_cast<const InputError*>(&e) != nullptr;
+        event.seconds = secondsSince(frameStart);
+        // Past a device limit or the memory budget, or with the device lost,
+        // the next frames would fail the same way.
+        if (dynamic_cast<const ResourceError*>(&e) != nullptr) {
+            m_summary.resourceExceeded = true;
+            m_halted = true;
+        }
+        report(event);
+    }
+
+    const gpu::Context& m_ctx;
+    const Scene& m_scene;
+    const SequenceOptions& m_options;
+    const Clock::time_point m_start = Clock::now();
+    SequenceSummary m_summary;
+    std::unique_ptr<FrameRenderer> m_renderer; // made on the first frame that needs it
+    bool m_halted = false;              // a failed frame under --fail-fast, a failed write, a limit
+    std::deque<PendingWrite> m_pending; // earlier frames being written, oldest first
+};
+
+} // namespace
+
+SequenceSummary renderSequence(const gpu::Context& ctx, const Scene& scene,
+                               const SequenceOptions& options) {
+    return SequenceRun(ctx, scene, options).run();
 }
 
 } // namespace cutaway::job

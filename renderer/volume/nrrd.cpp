@@ -150,28 +150,30 @@ glm::dvec3 spatialPart(const std::vector<double>& v, const NrrdSpace& space, con
     return glm::dvec3(v[0], v[1], v[2]) * space.toLps;
 }
 
-/// Reads a NRRD whose header starts at the beginning of `in` (`headerFileSize`
-/// bytes in all). A detached data file is looked up in `dataFolder`; without
-/// one (bytes in memory) a 'data file' field is an error.
-Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std::string& ctx,
-                      const std::optional<std::filesystem::path>& dataFolder) {
-    bool endedByBlankLine = false;
-    const detail::NrrdFields f = readNrrdHeader(in, ctx, endedByBlankLine);
+/// The grid a header declares: its voxel type, dimension (3, or 4 with a
+/// first axis of size 1), the index of its x axis, sizes and data bytes.
+struct NrrdGrid {
+    VoxelType type{};
+    std::int64_t dimension = 3;
+    std::size_t first = 0; ///< index of the x axis
+    std::int64_t sizes[3] = {};
+    std::size_t bytes = 0;
+};
 
-    const VoxelType type = parseNrrdType(required(f.type, "type", ctx), ctx);
-    const std::int64_t dimension =
-        parseIntField(required(f.dimension, "dimension", ctx), "dimension", ctx);
-    if (dimension != 3 && dimension != 4) {
-        throw InputError(ctx + ": dimension " + std::to_string(dimension) +
+NrrdGrid readGrid(const detail::NrrdFields& f, const std::string& ctx) {
+    NrrdGrid g;
+    g.type = parseNrrdType(required(f.type, "type", ctx), ctx);
+    g.dimension = parseIntField(required(f.dimension, "dimension", ctx), "dimension", ctx);
+    if (g.dimension != 3 && g.dimension != 4) {
+        throw InputError(ctx + ": dimension " + std::to_string(g.dimension) +
                          " is not supported (cutaway reads 3D volumes: dimension 3, or 4 with a "
                          "first axis of size 1)");
     }
-    const auto first = static_cast<std::size_t>(dimension - 3); // index of the x axis
-
+    g.first = static_cast<std::size_t>(g.dimension - 3);
     const auto sizeWords = splitWords(required(f.sizes, "sizes", ctx));
-    if (static_cast<std::int64_t>(sizeWords.size()) != dimension) {
+    if (static_cast<std::int64_t>(sizeWords.size()) != g.dimension) {
         throw InputError(ctx + ": 'sizes' has " + std::to_string(sizeWords.size()) +
-                         " entries but dimension is " + std::to_string(dimension));
+                         " entries but dimension is " + std::to_string(g.dimension));
     }
     std::int64_t all[4] = {};
     for (std::size_t a = 0; a < sizeWords.size(); ++a) {
@@ -180,181 +182,240 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
                              "' is not an integer");
         }
     }
-    if (dimension == 4 && all[0] != 1) {
+    if (g.dimension == 4 && all[0] != 1) {
         throw InputError(ctx + ": dimension 4 is only supported with a first axis of size 1 (got " +
                          std::to_string(all[0]) + ")");
     }
-    const std::int64_t sizes[3] = {all[first], all[first + 1], all[first + 2]};
-    const std::size_t bytes = detail::checkedByteCount(sizes, type, ctx);
+    for (int a = 0; a < 3; ++a)
+        g.sizes[a] = all[g.first + static_cast<std::size_t>(a)];
+    g.bytes = detail::checkedByteCount(g.sizes, g.type, ctx);
+    return g;
+}
 
-    Volume volume;
-    volume.dims = glm::ivec3(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]),
-                             static_cast<int>(sizes[2]));
-    volume.type = type;
-    // Spacing: the length of each space direction, else `spacings`, else 1 mm.
+/// Spacing, directions and origin from the space directions.
+void readSpaceGeometry(const detail::NrrdFields& f, const NrrdGrid& g, Volume& volume,
+                       const std::string& ctx) {
+    const NrrdSpace space = parseSpace(f, ctx);
+    const auto vectors = parseNrrdVectors(*f.directions, "space directions", ctx);
+    if (static_cast<std::int64_t>(vectors.size()) != g.dimension) {
+        throw InputError(ctx + ": 'space directions' has " + std::to_string(vectors.size()) +
+                         " entries but dimension is " + std::to_string(g.dimension));
+    }
+    for (int a = 0; a < 3; ++a) {
+        const auto& v = vectors[g.first + static_cast<std::size_t>(a)];
+        if (!v) throw InputError(ctx + ": 'space directions' is none for a spatial axis");
+        const glm::dvec3 vector = spatialPart(*v, space, "space directions", ctx);
+        volume.spacing[a] = glm::length(vector);
+        detail::checkSpacing(volume.spacing[a], a, ctx);
+        volume.direction[a] = vector / volume.spacing[a];
+    }
+    volume.space = space.space;
+    if (f.origin) {
+        volume.origin = spatialPart(originVector(*f.origin, ctx), space, "space origin", ctx);
+        if (!std::isfinite(volume.origin.x) || !std::isfinite(volume.origin.y) ||
+            !std::isfinite(volume.origin.z)) {
+            throw InputError(ctx + ": 'space origin' is not finite");
+        }
+    }
+}
+
+/// Spacing (the length of each space direction, else `spacings`, else 1 mm),
+/// directions and origin.
+void readGeometry(const detail::NrrdFields& f, const NrrdGrid& g, Volume& volume,
+                  const std::string& ctx) {
     if (f.directions) {
-        const NrrdSpace space = parseSpace(f, ctx);
-        const auto vectors = parseNrrdVectors(*f.directions, "space directions", ctx);
-        if (static_cast<std::int64_t>(vectors.size()) != dimension) {
-            throw InputError(ctx + ": 'space directions' has " + std::to_string(vectors.size()) +
-                             " entries but dimension is " + std::to_string(dimension));
+        readSpaceGeometry(f, g, volume, ctx);
+        return;
+    }
+    if (f.spacings) {
+        const auto words = splitWords(*f.spacings);
+        if (static_cast<std::int64_t>(words.size()) != g.dimension) {
+            throw InputError(ctx + ": 'spacings' has " + std::to_string(words.size()) +
+                             " entries but dimension is " + std::to_string(g.dimension));
         }
         for (int a = 0; a < 3; ++a) {
-            const auto& v = vectors[first + static_cast<std::size_t>(a)];
-            if (!v) throw InputError(ctx + ": 'space directions' is none for a spatial axis");
-            const glm::dvec3 vector = spatialPart(*v, space, "space directions", ctx);
-            volume.spacing[a] = glm::length(vector);
+            const auto word = words[g.first + static_cast<std::size_t>(a)];
+            if (!detail::parseDouble(word, volume.spacing[a])) {
+                throw InputError(ctx + ": 'spacings' entry '" + std::string(word) +
+                                 "' is not a number");
+            }
             detail::checkSpacing(volume.spacing[a], a, ctx);
-            volume.direction[a] = vector / volume.spacing[a];
-        }
-        volume.space = space.space;
-        if (f.origin) {
-            volume.origin = spatialPart(originVector(*f.origin, ctx), space, "space origin", ctx);
-            if (!std::isfinite(volume.origin.x) || !std::isfinite(volume.origin.y) ||
-                !std::isfinite(volume.origin.z)) {
-                throw InputError(ctx + ": 'space origin' is not finite");
-            }
-        }
-    } else {
-        if (f.spacings) {
-            const auto words = splitWords(*f.spacings);
-            if (static_cast<std::int64_t>(words.size()) != dimension) {
-                throw InputError(ctx + ": 'spacings' has " + std::to_string(words.size()) +
-                                 " entries but dimension is " + std::to_string(dimension));
-            }
-            for (int a = 0; a < 3; ++a) {
-                const auto word = words[first + static_cast<std::size_t>(a)];
-                if (!detail::parseDouble(word, volume.spacing[a])) {
-                    throw InputError(ctx + ": 'spacings' entry '" + std::string(word) +
-                                     "' is not a number");
-                }
-                detail::checkSpacing(volume.spacing[a], a, ctx);
-            }
-        }
-        // Without space directions the axes have no orientation in a space:
-        // an origin is kept as written, for reference.
-        if (f.origin) {
-            const std::vector<double> origin = originVector(*f.origin, ctx);
-            for (std::size_t a = 0; a < std::min<std::size_t>(3, origin.size()); ++a) {
-                volume.origin[static_cast<int>(a)] = origin[a];
-            }
         }
     }
-
-    if (f.slope || f.inter) {
-        double slope = 1.0;
-        double inter = 0.0;
-        if ((f.slope && !detail::parseDouble(*f.slope, slope)) ||
-            (f.inter && !detail::parseDouble(*f.inter, inter)) || !std::isfinite(slope) ||
-            slope == 0.0 || !std::isfinite(inter)) {
-            throw InputError(ctx + ": invalid cutaway_slope / cutaway_inter value scaling");
+    // Without space directions the axes have no orientation in a space: an
+    // origin is kept as written, for reference.
+    if (f.origin) {
+        const std::vector<double> origin = originVector(*f.origin, ctx);
+        for (std::size_t a = 0; a < std::min<std::size_t>(3, origin.size()); ++a) {
+            volume.origin[static_cast<int>(a)] = origin[a];
         }
-        volume.slope = slope;
-        volume.inter = inter;
     }
+}
 
-    bool bigEndian = false; // a missing endian (legal for 8-bit data) means little
+/// cutaway's own value scaling fields (cutaway_slope, cutaway_inter).
+void readScaling(const detail::NrrdFields& f, Volume& volume, const std::string& ctx) {
+    if (!f.slope && !f.inter) return;
+    double slope = 1.0;
+    double inter = 0.0;
+    if ((f.slope && !detail::parseDouble(*f.slope, slope)) ||
+        (f.inter && !detail::parseDouble(*f.inter, inter)) || !std::isfinite(slope) ||
+        slope == 0.0 || !std::isfinite(inter)) {
+        throw InputError(ctx + ": invalid cutaway_slope / cutaway_inter value scaling");
+    }
+    volume.slope = slope;
+    volume.inter = inter;
+}
+
+/// How the data is stored: byte order, encoding and what comes before it.
+struct NrrdEncoding {
+    bool bigEndian = false;
+    bool gzip = false;
+    std::int64_t byteSkip = 0;
+    std::int64_t lineSkip = 0;
+};
+
+NrrdEncoding readEncoding(const detail::NrrdFields& f, const std::string& ctx) {
+    NrrdEncoding e; // a missing endian (legal for 8-bit data) means little
     if (f.endian) {
         const std::string endian = toLower(trim(*f.endian));
         if (endian == "big")
-            bigEndian = true;
+            e.bigEndian = true;
         else if (endian != "little")
             throw InputError(ctx + ": unknown endian '" + *f.endian + "'");
     }
     const std::string encoding = toLower(trim(required(f.encoding, "encoding", ctx)));
-    const bool gzip = encoding == "gzip" || encoding == "gz";
-    if (!gzip && encoding != "raw") {
+    e.gzip = encoding == "gzip" || encoding == "gz";
+    if (!e.gzip && encoding != "raw") {
         throw InputError(ctx + ": unsupported encoding '" + encoding + "' (supported: raw, gzip)");
     }
-    const std::int64_t byteSkip = f.byteSkip ? parseIntField(*f.byteSkip, "byte skip", ctx) : 0;
-    const std::int64_t lineSkip = f.lineSkip ? parseIntField(*f.lineSkip, "line skip", ctx) : 0;
-    if (byteSkip < -1 || byteSkip > static_cast<std::int64_t>(detail::kMaxBytes)) {
-        throw InputError(ctx + ": invalid byte skip " + std::to_string(byteSkip));
+    e.byteSkip = f.byteSkip ? parseIntField(*f.byteSkip, "byte skip", ctx) : 0;
+    e.lineSkip = f.lineSkip ? parseIntField(*f.lineSkip, "line skip", ctx) : 0;
+    if (e.byteSkip < -1 || e.byteSkip > static_cast<std::int64_t>(detail::kMaxBytes)) {
+        throw InputError(ctx + ": invalid byte skip " + std::to_string(e.byteSkip));
     }
-    if (byteSkip == -1 && gzip) {
+    if (e.byteSkip == -1 && e.gzip) {
         throw InputError(ctx + ": byte skip -1 is only valid with raw encoding");
     }
-    if (lineSkip < 0) throw InputError(ctx + ": invalid line skip " + std::to_string(lineSkip));
+    if (e.lineSkip < 0) throw InputError(ctx + ": invalid line skip " + std::to_string(e.lineSkip));
+    return e;
+}
 
-    // The data: after the header's blank line, or in a detached data file.
+/// Where the voxel data is read from: after the header's blank line in `in`,
+/// or a detached data file.
+struct NrrdData {
     std::optional<InputFile> detached;
-    std::istream* data = &in;
-    std::string dataCtx = ctx;
-    std::uint64_t dataFileSize = headerFileSize;
-    if (f.dataFile) {
-        const std::string name(trim(*f.dataFile));
-        if (name.rfind("LIST", 0) == 0 ||
-            (name.find('%') != std::string::npos && name.find(' ') != std::string::npos)) {
-            throw InputError(ctx + ": multi-file 'data file' lists are not supported ('" + name +
-                             "'); use a single data file");
+    std::istream* stream = nullptr;
+    std::string ctx;
+    std::uint64_t fileSize = 0;
+};
+
+void openData(NrrdData& d, const detail::NrrdFields& f, std::istream& in,
+              std::uint64_t headerFileSize, bool endedByBlankLine, const std::string& ctx,
+              const std::optional<std::filesystem::path>& dataFolder) {
+    d.stream = &in;
+    d.ctx = ctx;
+    d.fileSize = headerFileSize;
+    if (!f.dataFile) {
+        if (!endedByBlankLine) {
+            throw InputError(ctx + ": no data: the header has no blank line after it and no "
+                                   "'data file' field");
         }
-        if (!dataFolder) {
-            throw InputError(ctx + ": data file '" + name +
-                             "' cannot be read: a header read from memory has no folder");
-        }
-        std::filesystem::path dataPath(name);
-        if (dataPath.is_relative()) dataPath = *dataFolder / dataPath;
-        detached.emplace(dataPath, "it",
-                         ctx + ": data file '" + name + "' (" + dataPath.string() + ")");
-        dataFileSize = detached->size();
-        data = &detached->stream();
-        dataCtx = ctx + " (data file " + dataPath.string() + ")";
-    } else if (!endedByBlankLine) {
-        throw InputError(ctx + ": no data: the header has no blank line after it and no 'data "
-                               "file' field");
+        return;
     }
+    const std::string name(trim(*f.dataFile));
+    if (name.rfind("LIST", 0) == 0 ||
+        (name.find('%') != std::string::npos && name.find(' ') != std::string::npos)) {
+        throw InputError(ctx + ": multi-file 'data file' lists are not supported ('" + name +
+                         "'); use a single data file");
+    }
+    if (!dataFolder) {
+        throw InputError(ctx + ": data file '" + name +
+                         "' cannot be read: a header read from memory has no folder");
+    }
+    std::filesystem::path dataPath(name);
+    if (dataPath.is_relative()) dataPath = *dataFolder / dataPath;
+    d.detached.emplace(dataPath, "it",
+                       ctx + ": data file '" + name + "' (" + dataPath.string() + ")");
+    d.fileSize = d.detached->size();
+    d.stream = &d.detached->stream();
+    d.ctx = ctx + " (data file " + dataPath.string() + ")";
+}
+
+/// The `bytes` of raw data, `e.byteSkip` after the stream's position (-1:
+/// the file's last bytes).
+std::vector<std::byte> readRaw(const NrrdData& d, const NrrdEncoding& e, std::size_t bytes) {
+    auto start = static_cast<std::uint64_t>(d.stream->tellg());
+    if (e.byteSkip == -1) {
+        // Data at the end of the file, whatever comes before it.
+        start = d.fileSize < bytes ? d.fileSize + 1 : d.fileSize - bytes;
+    } else {
+        start += static_cast<std::uint64_t>(e.byteSkip);
+    }
+    const std::uint64_t available = start <= d.fileSize ? d.fileSize - start : 0;
+    if (start > d.fileSize || available < bytes) {
+        throw InputError(d.ctx + ": data truncated: expected " + std::to_string(bytes) +
+                         " bytes after the header, found " + std::to_string(available));
+    }
+    d.stream->seekg(static_cast<std::streamoff>(start));
+    std::vector<std::byte> data(bytes);
+    if (detail::readSome(*d.stream, data.data(), bytes) != bytes) {
+        throw InputError(d.ctx + ": read error in the voxel data");
+    }
+    return data;
+}
+
+/// The `bytes` of gzip data, its byte skip counting decompressed bytes; no
+/// more and no fewer.
+std::vector<std::byte> readGzip(const NrrdData& d, const NrrdEncoding& e, std::size_t bytes) {
+    detail::GzipReader reader(*d.stream, d.ctx);
+    if (reader.skip(static_cast<std::uint64_t>(e.byteSkip)) <
+        static_cast<std::uint64_t>(e.byteSkip)) {
+        throw InputError(d.ctx + ": data truncated: byte skip " + std::to_string(e.byteSkip) +
+                         " goes past the end of the decompressed data");
+    }
+    std::vector<std::byte> data = detail::readUpTo(reader, bytes);
+    if (data.size() < bytes) {
+        throw InputError(d.ctx + ": data truncated: expected " + std::to_string(bytes) +
+                         " bytes after decompression, found " + std::to_string(data.size()));
+    }
+    std::byte extra{};
+    if (reader.read(&extra, 1) != 0) {
+        throw InputError(d.ctx + ": decompressed data exceeds the declared size (" +
+                         std::to_string(bytes) + " bytes)");
+    }
+    return data;
+}
+
+/// Reads a NRRD whose header starts at the beginning of `in` (`headerFileSize`
+/// bytes in all). A detached data file is looked up in `dataFolder`; without
+/// one (bytes in memory) a 'data file' field is an error.
+Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std::string& ctx,
+                      const std::optional<std::filesystem::path>& dataFolder) {
+    bool endedByBlankLine = false;
+    const detail::NrrdFields f = readNrrdHeader(in, ctx, endedByBlankLine);
+    const NrrdGrid grid = readGrid(f, ctx);
+    Volume volume;
+    volume.dims = glm::ivec3(static_cast<int>(grid.sizes[0]), static_cast<int>(grid.sizes[1]),
+                             static_cast<int>(grid.sizes[2]));
+    volume.type = grid.type;
+    readGeometry(f, grid, volume, ctx);
+    readScaling(f, volume, ctx);
+    const NrrdEncoding encoding = readEncoding(f, ctx);
+
+    NrrdData data;
+    openData(data, f, in, headerFileSize, endedByBlankLine, ctx, dataFolder);
     std::size_t unused = std::numeric_limits<std::size_t>::max();
     std::string skipped;
-    for (std::int64_t i = 0; i < lineSkip; ++i) {
-        if (!readNrrdLine(*data, skipped, unused, dataCtx)) {
-            throw InputError(dataCtx + ": line skip " + std::to_string(lineSkip) +
+    for (std::int64_t i = 0; i < encoding.lineSkip; ++i) {
+        if (!readNrrdLine(*data.stream, skipped, unused, data.ctx)) {
+            throw InputError(data.ctx + ": line skip " + std::to_string(encoding.lineSkip) +
                              " goes past the end of the file");
         }
     }
-
-    if (!gzip) {
-        auto start = static_cast<std::uint64_t>(data->tellg());
-        if (byteSkip == -1) {
-            // Data at the end of the file, whatever comes before it.
-            if (dataFileSize < bytes)
-                start = dataFileSize + 1;
-            else
-                start = dataFileSize - bytes;
-        } else {
-            start += static_cast<std::uint64_t>(byteSkip);
-        }
-        const std::uint64_t available = start <= dataFileSize ? dataFileSize - start : 0;
-        if (start > dataFileSize || available < bytes) {
-            throw InputError(dataCtx + ": data truncated: expected " + std::to_string(bytes) +
-                             " bytes after the header, found " + std::to_string(available));
-        }
-        data->seekg(static_cast<std::streamoff>(start));
-        volume.data.resize(bytes);
-        if (detail::readSome(*data, volume.data.data(), bytes) != bytes) {
-            throw InputError(dataCtx + ": read error in the voxel data");
-        }
-    } else {
-        detail::GzipReader reader(*data, dataCtx);
-        // For compressed data the byte skip counts decompressed bytes.
-        if (reader.skip(static_cast<std::uint64_t>(byteSkip)) <
-            static_cast<std::uint64_t>(byteSkip)) {
-            throw InputError(dataCtx + ": data truncated: byte skip " + std::to_string(byteSkip) +
-                             " goes past the end of the decompressed data");
-        }
-        volume.data = detail::readUpTo(reader, bytes);
-        if (volume.data.size() < bytes) {
-            throw InputError(dataCtx + ": data truncated: expected " + std::to_string(bytes) +
-                             " bytes after decompression, found " +
-                             std::to_string(volume.data.size()));
-        }
-        std::byte extra{};
-        if (reader.read(&extra, 1) != 0) {
-            throw InputError(dataCtx + ": decompressed data exceeds the declared size (" +
-                             std::to_string(bytes) + " bytes)");
-        }
-    }
-    if (detail::needsSwap(bigEndian)) {
-        detail::swapBytes(volume.data.data(), volume.voxelCount(), voxelSize(type));
+    volume.data =
+        encoding.gzip ? readGzip(data, encoding, grid.bytes) : readRaw(data, encoding, grid.bytes);
+    if (detail::needsSwap(encoding.bigEndian)) {
+        detail::swapBytes(volume.data.data(), volume.voxelCount(), voxelSize(grid.type));
     }
     return volume;
 }
