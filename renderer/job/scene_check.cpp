@@ -11,7 +11,6 @@
 #include <map>
 #include <memory>
 #include <set>
-#include <sstream>
 
 namespace cutaway::job {
 
@@ -32,22 +31,12 @@ namespace {
 
 // What the volume and label files of a frame depend on: frameVolumeKey
 // without the window and the operators, which change nothing that is read.
-std::string filesKey(const Scene& scene) {
+FrameVolumeKey filesKey(const Scene& scene) {
     Scene probe;
     probe.volume = scene.volume;
     probe.volume.window.reset();
     probe.labels = scene.labels;
     return frameVolumeKey(probe);
-}
-
-// What a segment-aligned operator's indicator depends on beyond the files.
-std::string segmentKey(const Alignment& a) {
-    std::ostringstream key;
-    key << "|segment";
-    for (const std::int64_t id : a.labels)
-        key << ' ' << id;
-    if (a.range) key << " range " << (*a.range)[0] << ' ' << (*a.range)[1];
-    return key.str();
 }
 
 // Refuses a segment-aligned operator whose segment holds no voxel of the
@@ -63,12 +52,13 @@ void checkSegmentNotEmpty(const OperatorSpec& op, const Volume& scan, const Volu
 
 } // namespace
 
-const SceneFileCheck::Files& SceneFileCheck::filesOf(const Scene& scene) {
-    const std::string key = filesKey(scene);
-    auto it = m_files.find(key);
+std::size_t SceneFileCheck::filesOf(const Scene& scene) {
+    FrameVolumeKey key = filesKey(scene);
+    auto it = std::find_if(m_files.begin(), m_files.end(),
+                           [&](const Files& files) { return files.key == key; });
     if (it == m_files.end()) {
         Files files;
-        files.key = key;
+        files.key = std::move(key);
         try {
             // Sequential composition resamples the scan and drops its labels
             // (frameVolume): they are not read for such a frame.
@@ -77,14 +67,16 @@ const SceneFileCheck::Files& SceneFileCheck::filesOf(const Scene& scene) {
         } catch (const InputError& e) {
             files.error = e.what(); // read once, reported for every frame that names them
         }
-        it = m_files.emplace(key, std::move(files)).first;
+        m_files.push_back(std::move(files));
+        it = m_files.end() - 1;
     }
-    if (!it->second.error.empty()) throw InputError(it->second.error);
-    return it->second;
+    if (!it->error.empty()) throw InputError(it->error);
+    return static_cast<std::size_t>(it - m_files.begin());
 }
 
 void SceneFileCheck::frame(const Scene& scene) {
-    const Files& files = filesOf(scene);
+    const std::size_t filesIndex = filesOf(scene);
+    const Files& files = m_files[filesIndex];
     if (!sequential(scene)) {
         // What each frame's render refuses before it draws: overlapping
         // operators, a segment without voxels (its scan and labels as read).
@@ -93,8 +85,7 @@ void SceneFileCheck::frame(const Scene& scene) {
             const OperatorSpec& op = scene.operators[i];
             if (op.alignment.mode != AlignmentMode::Segment) continue;
             // The message names the operator: one key per operator.
-            const std::string key =
-                files.key + segmentKey(op.alignment) + '|' + std::to_string(i) + ' ' + op.name;
+            const SegmentKey key{filesIndex, op.alignment.labels, op.alignment.range, i, op.name};
             if (!m_segments.contains(key)) {
                 std::string error;
                 try {
@@ -110,7 +101,7 @@ void SceneFileCheck::frame(const Scene& scene) {
     }
     for (const MeshSpec& mesh : scene.meshes)
         if (m_meshesRead.insert(mesh.file.string()).second) mesh::loadGltf(mesh.file);
-    if (files.nonFinite > 0 && m_warnedFiles.insert(files.key).second)
+    if (files.nonFinite > 0 && m_warnedFiles.insert(filesIndex).second)
         m_warnings.push_back(nonFiniteWarning(scene, files.nonFinite, files.scan->voxelCount()));
     const glm::dvec3 extent = files.scan->extent();
     for (OperatorOutside& o : operatorsOutside(scene, -0.5 * extent, 0.5 * extent))

@@ -2,12 +2,15 @@
 // What `cutaway validate` checks beyond a scene's JSON, without a device: the
 // files its frames name, read and checked as a render would, and the warnings
 // a render would give.
+#include "job/scene_data.hpp"
 #include "scene/scene.hpp"
 
+#include <array>
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -41,18 +44,29 @@ public:
 
 private:
     struct Files {
-        std::string key;
+        FrameVolumeKey key;
         std::shared_ptr<const Volume> scan, labels;
         std::string error;         ///< why reading them failed, or ""
         std::size_t nonFinite = 0; ///< the scan's NaN and infinite voxels (warned of once)
     };
-    const Files& filesOf(const Scene& scene);
+    /// The index in m_files of the files `scene` reads, read on first use.
+    std::size_t filesOf(const Scene& scene);
+    /// A segment-aligned operator's check: its files, its segment, and the
+    /// operator (the message names it).
+    struct SegmentKey {
+        std::size_t files = 0;
+        std::vector<std::int64_t> labels;
+        std::optional<std::array<double, 2>> range;
+        std::size_t operatorIndex = 0;
+        std::string name;
+        auto operator<=>(const SegmentKey&) const = default;
+    };
 
-    std::map<std::string, Files> m_files;          ///< by what they are read from
-    std::map<std::string, std::string> m_segments; ///< segment checked -> its error, or ""
+    std::vector<Files> m_files;                   ///< each distinct pair of files read
+    std::map<SegmentKey, std::string> m_segments; ///< segment checked -> its error, or ""
     std::set<std::string> m_meshesRead;
     std::set<std::size_t> m_warned;
-    std::set<std::string> m_warnedFiles; ///< files keys whose non-finite voxels were warned of
+    std::set<std::size_t> m_warnedFiles; ///< m_files whose non-finite voxels were warned of
     std::vector<std::string> m_warnings;
 };
 

@@ -29,6 +29,7 @@ struct VolumeSource {
     glm::ivec3 phantomSize{128};       ///< /volume/size (phantoms only), each in [8, 1024]
     std::optional<glm::dvec3> spacing; ///< /volume/spacing: overrides the file's, mm, > 0
     std::optional<std::array<double, 2>> window; ///< /volume/window: [lo, hi] values, lo < hi
+    bool operator==(const VolumeSource&) const = default;
 };
 
 /// One control point of a piecewise-linear transfer function. `value` is in the

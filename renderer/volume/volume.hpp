@@ -99,6 +99,7 @@ struct RawLayout {
     glm::dvec3 spacing{1.0};
     bool bigEndian = false;
     std::uint64_t offset = 0; ///< bytes to skip before the first voxel
+    bool operator==(const RawLayout&) const = default;
 };
 
 /// Reads .nrrd/.nhdr, .nii/.nii.gz by extension. Throws InputError naming the
