@@ -20,6 +20,7 @@
 #include "job/render_job.hpp"
 #include "job/scene_check.hpp"
 #include "job/sequence.hpp"
+#include "job/validate_run.hpp"
 #include "progress.hpp"
 #include "scene/animation.hpp"
 #include "scene/scene.hpp"
@@ -27,8 +28,6 @@
 #include "volume_info.hpp"
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -173,18 +172,10 @@ struct ExportArgs {
     bool raw = false;
 };
 
-// Whether `path` names an NRRD file: ".nrrd" in any case, as volumes are read.
-bool isNrrdName(const std::filesystem::path& path) {
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return extension == ".nrrd";
-}
-
 int runExport(const ExportArgs& args) {
-    const std::filesystem::path out(args.output);
-    if (!isNrrdName(out))
-        throw cutaway::InputError("-o " + args.output + ": expected a .nrrd file name");
+    cutaway::job::ExportRequest request{args.output, std::nullopt, !args.raw};
+    if (!args.labelsOutput.empty()) request.labelsOutput = args.labelsOutput;
+    cutaway::job::checkExportNames(request);
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
     int frame = base.animation.firstFrame;
     if (!args.frame.empty()) {
@@ -192,22 +183,11 @@ int runExport(const ExportArgs& args) {
         warnOutsideAnimation(base, frame, frame, "--frame");
     }
     const cutaway::Scene scene = cutaway::sceneAtFrame(base, frame);
-    const std::filesystem::path labelsOut(args.labelsOutput);
-    if (!args.labelsOutput.empty()) {
-        if (!isNrrdName(labelsOut))
-            throw cutaway::InputError("--labels-output " + args.labelsOutput +
-                                      ": expected a .nrrd file name");
-        if (!scene.labels)
-            throw cutaway::InputError("--labels-output " + args.labelsOutput + ": " + args.scene +
-                                      " has no /labels");
-    }
-    cutaway::job::checkExportPaths(
-        scene, out,
-        args.labelsOutput.empty() ? std::nullopt : std::optional<std::filesystem::path>(labelsOut));
+    cutaway::job::checkExportRequest(scene, args.scene, request);
     cutaway::cli::installEndingHandlers(); // no temporary outlives a signal
     const cutaway::job::Exported exported = [&] {
         try {
-            return cutaway::job::exportVolume(scene, !args.labelsOutput.empty());
+            return cutaway::job::exportVolume(scene, request.labelsOutput.has_value());
         } catch (const cutaway::InputError& e) {
             const std::string what = e.what();
             // A JSON pointer is a place in the scene file: name the file too.
@@ -218,75 +198,39 @@ int runExport(const ExportArgs& args) {
     }();
     for (const std::string& warning : exported.warnings)
         std::fprintf(stderr, "cutaway: warning: %s: %s\n", args.scene.c_str(), warning.c_str());
-    const auto write = [&](const std::filesystem::path& path, const cutaway::Volume& v) {
-        cutaway::job::createOutputFolder(path); // as `render` does
-        cutaway::writeNrrd(path, v, !args.raw);
-        if (isatty(STDERR_FILENO))
+    const bool terminal = isatty(STDERR_FILENO) != 0;
+    cutaway::job::writeExport(exported, request, [&](const auto& path, const cutaway::Volume& v) {
+        if (terminal)
             std::fprintf(stderr, "wrote %s: frame %d, %d x %d x %d %s voxels\n",
                          path.string().c_str(), frame, v.dims.x, v.dims.y, v.dims.z,
                          std::string(cutaway::voxelTypeName(v.type)).c_str());
-    };
-    write(out, exported.volume);
-    if (exported.labels) {
-        try {
-            write(labelsOut, *exported.labels);
-        } catch (...) { // both files or neither
-            std::error_code ignored;
-            std::filesystem::remove(out, ignored);
-            throw;
-        }
-    }
+    });
     return 0;
 }
 
 // Checks what `render` with the same arguments would refuse as bad input,
-// frame by frame, without a device: the scene, every frame's scene, the
-// output paths and the files the frames read.
+// frame by frame, without a device (job/validate_run.hpp).
 int runValidate(const RenderArgs& args) {
     namespace job = cutaway::job;
     const cutaway::Scene scene = cutaway::loadScene(args.scene, parseSettings(args.sets));
-    const job::SequenceOptions options = runOptions(args, scene);
-    job::checkOutputPaths(scene, options);
-    const std::vector<int> frames = job::framesToRender(scene, options);
-    job::SceneFileCheck check;
-    std::vector<std::string> failures; // the first few are shown
-    int failed = 0;
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-        // Without tracks every frame is the same scene: one check is all.
-        if (i > 0 && scene.animation.tracks.empty()) break;
-        try {
-            cutaway::Scene frame = cutaway::sceneAtFrame(scene, frames[i]);
-            job::applyOverrides(frame, options.overrides);
-            try {
-                check.frame(frame);
-            } catch (const cutaway::InputError& e) {
-                const std::string what = e.what();
-                // A JSON pointer is a place in the scene file: name the file too.
-                throw cutaway::InputError(what.starts_with('/')
-                                              ? args.scene + " (frame " +
-                                                    std::to_string(frames[i]) + "): " + what
-                                              : what);
-            }
-        } catch (const cutaway::InputError& e) {
-            if (++failed <= 5) failures.push_back(e.what());
-        }
-    }
-    if (failed > 0) {
-        for (const std::string& failure : failures)
+    const job::Validation v = job::validateRun(scene, runOptions(args, scene), args.scene);
+    if (v.failed > 0) {
+        for (const std::string& failure : v.failures)
             std::cerr << "cutaway: error: " << failure << "\n";
-        if (failed > 5) std::cerr << "cutaway: error: ... and " << failed - 5 << " more frame(s)\n";
-        const std::size_t checked = scene.animation.tracks.empty() ? 1 : frames.size();
-        std::cerr << "cutaway: " << failed << " of " << checked << " frames are not valid\n";
+        if (v.failed > job::kFailuresShown)
+            std::cerr << "cutaway: error: ... and " << v.failed - job::kFailuresShown
+                      << " more frame(s)\n";
+        std::cerr << "cutaway: " << v.failed << " of " << v.checked << " frames are not valid\n";
         return kExitInput;
     }
     if (!args.quiet)
-        for (const std::string& warning : check.takeWarnings())
+        for (const std::string& warning : v.warnings)
             std::cerr << "cutaway: warning: " << args.scene << ": " << warning << "\n";
-    if (frames.empty())
+    if (v.framesInRun == 0)
         std::printf("%s: valid (no frames in this run)\n", args.scene.c_str());
     else
-        std::printf("%s: valid (%zu frame(s), %d..%d)\n", args.scene.c_str(), frames.size(),
-                    frames.front(), frames.back());
+        std::printf("%s: valid (%d frame(s), %d..%d)\n", args.scene.c_str(), v.framesInRun,
+                    v.firstFrame, v.lastFrame);
     return 0;
 }
 

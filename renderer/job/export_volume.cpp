@@ -2,13 +2,18 @@
 
 #include "bake/feature_bake.hpp"
 #include "core/error.hpp"
+#include "job/output_paths.hpp"
 #include "job/render_job.hpp"
 #include "job/scene_check.hpp"
+#include "job/sequence.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/classify/label_classes.hpp"
 #include "volume/otsu.hpp"
 #include "volume/segmentation.hpp"
+#include "volume/volume.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <map>
 #include <memory>
 
@@ -85,6 +90,52 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
         result.labels = deform(labelled, 0.0f, operators::Sampling::Nearest).volume;
     }
     return result;
+}
+
+namespace {
+
+// Whether `path` names an NRRD file: ".nrrd" in any case, as volumes are read.
+bool isNrrdName(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension == ".nrrd";
+}
+
+} // namespace
+
+void checkExportNames(const ExportRequest& request) {
+    if (!isNrrdName(request.output))
+        throw InputError("-o " + request.output.string() + ": expected a .nrrd file name");
+    if (request.labelsOutput && !isNrrdName(*request.labelsOutput))
+        throw InputError("--labels-output " + request.labelsOutput->string() +
+                         ": expected a .nrrd file name");
+}
+
+void checkExportRequest(const Scene& scene, const std::string& sceneName,
+                        const ExportRequest& request) {
+    if (request.labelsOutput && !scene.labels)
+        throw InputError("--labels-output " + request.labelsOutput->string() + ": " + sceneName +
+                         " has no /labels");
+    checkExportPaths(scene, request.output, request.labelsOutput);
+}
+
+void writeExport(const Exported& exported, const ExportRequest& request,
+                 const std::function<void(const std::filesystem::path&, const Volume&)>& wrote) {
+    const auto write = [&](const std::filesystem::path& path, const Volume& v) {
+        createOutputFolder(path); // as `render` does
+        writeNrrd(path, v, request.compress);
+        if (wrote) wrote(path, v);
+    };
+    write(request.output, exported.volume);
+    if (!exported.labels || !request.labelsOutput) return;
+    try {
+        write(*request.labelsOutput, *exported.labels);
+    } catch (...) { // both files or neither
+        std::error_code ignored;
+        std::filesystem::remove(request.output, ignored);
+        throw;
+    }
 }
 
 } // namespace cutaway::job

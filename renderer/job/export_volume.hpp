@@ -8,6 +8,8 @@
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
+#include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,5 +42,27 @@ struct Exported {
 /// maps, each voxel taking the label nearest to its pre-image: ids are never
 /// blended, and cuts are background (0).
 Exported exportVolume(const Scene& scene, bool withLabels = false);
+
+/// Where an export goes: the volume's NRRD, and its labels' when asked for.
+struct ExportRequest {
+    std::filesystem::path output;
+    std::optional<std::filesystem::path> labelsOutput;
+    bool compress = true; ///< gzip; false writes raw
+};
+
+/// Refuses outputs not named .nrrd (InputError naming -o or --labels-output).
+void checkExportNames(const ExportRequest& request);
+
+/// Refuses what `cutaway export` cannot write for `scene` (one frame): labels
+/// asked of a scene without /labels (naming `sceneName`), and outputs that
+/// are files the frame reads or each other (checkExportPaths). InputError.
+void checkExportRequest(const Scene& scene, const std::string& sceneName,
+                        const ExportRequest& request);
+
+/// Writes `exported` as `request` says, making missing folders: both files
+/// or neither (a failed labels file removes the volume's). Calls `wrote`
+/// after each file.
+void writeExport(const Exported& exported, const ExportRequest& request,
+                 const std::function<void(const std::filesystem::path&, const Volume&)>& wrote);
 
 } // namespace cutaway::job
