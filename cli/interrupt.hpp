@@ -1,6 +1,6 @@
 #pragma once
-// Signals that end a run: SIGINT, SIGTERM, SIGHUP (the terminal or the
-// session is gone) and SIGQUIT alike. For a render, the first one asks the
+// Signals that end a run: SIGINT, SIGTERM, SIGHUP (the terminal hung up)
+// and SIGQUIT alike. For a render, the first one asks the
 // run to stop; the frame in flight is discarded and finished frames stay
 // whole, since every file is written to a temporary name and renamed. A
 // second signal, a quarter second or more after the first, ends the process

@@ -73,7 +73,7 @@ std::vector<int> framesToRender(const Scene& scene, const SequenceOptions& optio
 namespace {
 
 // A rendered frame on its way to disk. Writing frame n overlaps rendering
-// frame n + 1 (docs/performance.md): the files are written on another thread
+// frame n + 1 (docs/design/writers.md): the files are written on another thread
 // while the device renders the next frame, and where writes are slower than
 // renders, several frames' files at once (writesInFlight).
 // A frame's time is its own: its render (which ended before the write

@@ -120,7 +120,8 @@ enum class Classification { Preintegrated, Post };
 ///                 so boxes may overlap; costs a CPU resample when they change
 enum class Composition { Separate, Sequential };
 
-/// /render/method: how the volume integral is taken (docs/performance.md).
+/// /render/method: how the volume integral is taken (docs/design/ray-caster.md;
+/// speeds: docs/performance.md#settings-that-matter).
 ///   "slicing": view-aligned slices with the stencil pass (paper section 5; default)
 ///   "raycast": a compute pass marching each pixel's ray through the same
 ///              sample points; up to CW_RAY_MAX_OPERATORS (3) live operators

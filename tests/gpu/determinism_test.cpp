@@ -1,4 +1,4 @@
-// Determinism (issue "Reliability"): the same scene on the same machine
+// Determinism: the same scene on the same machine
 // renders bit-identical pixels, whether the renderer is fresh or has cached
 // the volume, the fields and the pipelines of an earlier frame, and for both
 // render methods.

@@ -31,7 +31,7 @@ ImageDiff compareImages(const Image& a, const Image& b);
 /// each test states. Where it quantizes the weights to 8 bits, the same
 /// rounding can move a sample's value by 2^-8 of the step between two voxels,
 /// and a steep transfer function turns that into a jump in a handful of
-/// pixels. Measured on an H200 (2026-11-26) in the comparisons of tests/gpu:
+/// pixels. Measured on an NVIDIA H200 in the comparisons of tests/gpu:
 /// rms up to 2.5e-3, single pixels up to 0.38 (post-classified). There the
 /// images must agree in rms, and no pixel may differ by more than
 /// kQuantizedMaxAbs; a region missing or shaded wrong changes whole areas and

@@ -72,13 +72,13 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
                     coverage += loaded.rgba[i];
                 EXPECT_GT(coverage, 1000.0) << "the head must show";
                 const ImageDiff d = compareImages(sampled, loaded);
-                // Measured (2026-11-25): R8 up to 0.0083, rms 4.2e-4; R16 up to
+                // Measured on lavapipe: R8 up to 0.0083, rms 4.2e-4; R16 up to
                 // 3.6e-7 (float rounding: lavapipe weighs 16-bit texels in
                 // float too). A filter that mixed up two axes or missed the
                 // clamp moves whole edges by more than 0.1.
                 // A GPU weighs 16-bit texels in 8 bits too (expectAgree): up to
                 // 0.0033 on an H200 for the values, and 0.14 in single pixels
-                // with the peeler (2026-11-27), whose distance field it filters
+                // with the peeler, whose distance field it filters
                 // so too: the mask's edge moves by a fraction of a voxel. There
                 // the rms below is what sees a filter gone wrong.
                 const float most = !filtersInFloat()              ? kQuantizedMaxAbs
@@ -127,7 +127,7 @@ TEST_F(StorageFetch, BrickedGradientsRenderAsTheSampledOnesDo) {
                 renderWith(bake::GradientLayout::Bricked, bake::GradientLayout::Bricked);
             const Image mixedUp =
                 renderWith(bake::GradientLayout::Bricked, bake::GradientLayout::Linear);
-            // Measured (2026-11-26): lavapipe filters RGBA8 in float too, up
+            // Measured on lavapipe, which filters RGBA8 in float too: up
             // to 1.1e-6 apart; a mix-up, rms 0.021.
             expectAgree(sampled, loaded, 1e-5f, "bricked against sampled gradients");
             const ImageDiff wrong = compareImages(sampled, mixedUp);
