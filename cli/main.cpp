@@ -175,7 +175,7 @@ struct ExportArgs {
 int runExport(const ExportArgs& args) {
     cutaway::job::ExportRequest request{args.output, std::nullopt, !args.raw};
     if (!args.labelsOutput.empty()) request.labelsOutput = args.labelsOutput;
-    cutaway::job::checkExportNames(request);
+    cutaway::job::checkExportName(request);
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
     int frame = base.animation.firstFrame;
     if (!args.frame.empty()) {

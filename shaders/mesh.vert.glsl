@@ -2,6 +2,7 @@
 // Opaque meshes drawn before the volume (tool models, operator glyphs): world
 // position and normal for the lighting, the frame's camera for the position.
 #extension GL_GOOGLE_include_directive : require
+#include "shared/bindings.h"
 #include "shared/frame.h"
 #include "shared/mesh_draw.h"
 
@@ -11,7 +12,7 @@ layout(location = 2) in vec4 inColor;
 layout(location = 0) out vec3 worldPos;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 color;
-layout(std140, set = 0, binding = 0) uniform Frame {
+layout(std140, set = 0, binding = CW_BIND_FRAME) uniform Frame {
     FrameUniforms u;
 };
 layout(push_constant) uniform Push {

@@ -1,6 +1,6 @@
 #version 460
 // One triangle that covers the viewport (early ray termination, see
-// render/saturation_pass.hpp).
+// render/slicing/saturation_pass.hpp).
 void main() {
     vec2 p = vec2((gl_VertexIndex << 1) & 2, gl_VertexIndex & 2);
     gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);

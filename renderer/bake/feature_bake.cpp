@@ -288,6 +288,7 @@ gpu::Image FeatureBaker::distanceField(const gpu::Image& values, glm::dvec3 spac
     p.axis = 2;
     passes[2] = {m_envelope.get(), set.set, p, {groups(dims.x, 8), groups(dims.y, 8), 1}};
     runPasses(m_ctx, m_layout.get(), out, passes);
+    out.layout = kFeatureLayout;
     return out;
 }
 
@@ -328,6 +329,7 @@ gpu::Image FeatureBaker::segmentMask(const gpu::Image& texture, glm::dvec3 spaci
     p.mode = 1;
     passes.push_back({m_finish.get(), set.set, p, finishGroups(dims)});
     runPasses(m_ctx, m_layout.get(), out, passes);
+    out.layout = kFeatureLayout;
     return out;
 }
 

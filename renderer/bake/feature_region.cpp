@@ -61,6 +61,7 @@ gpu::Image FeatureRegionBaker::bake(const gpu::Image& values, const gpu::Image& 
     params.dims = glm::ivec3(values.extent.width, values.extent.height, values.extent.depth);
     gpu::computeIntoImage(m_ctx, out, m_pipeline.get(), m_layout.get(), set.set, &params,
                           sizeof params, glm::uvec3(8, 8, 4)); // one workgroup each
+    out.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     return out;
 }
 

@@ -72,7 +72,8 @@ gpu::Image GradientBaker::bake(const gpu::Image& values, glm::dvec3 spacing,
                                                      : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     gpu::DescriptorSet set = gpu::allocateDescriptorSet(
         m_ctx, m_setLayout.get(),
-        {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 3}});
+        {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+         {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, m_tuning.storageValues ? 3u : 1u}});
     gpu::writeImageDescriptor(m_ctx, set.set, CW_GRADIENT_BIND_VALUES,
                               VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, values.view.get(),
                               values.layout, m_sampler.get());

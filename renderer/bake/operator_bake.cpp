@@ -75,6 +75,7 @@ BakedMap OperatorBaker::bake(const shader::OperatorParams& params, glm::vec3 lo,
     // The derivatives read the map's texels the first pass wrote.
     gpu::computeIntoImage(m_ctx, out.derivatives, m_derivativePipeline.get(),
                           m_derivativeLayout.get(), derivativeSet.set, &push, sizeof(push), kGroup);
+    out.map.layout = out.derivatives.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
     return out;
 }
 

@@ -187,6 +187,9 @@ DeviceMemory Context::allocate(const VkMemoryRequirements& req, VkMemoryProperty
 }
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
+    // The pool (allocation and recording) and the queue are externally
+    // synchronized objects: one submission at a time.
+    const std::lock_guard lock(m_submitMutex);
     VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     alloc.commandPool = m_commandPool.get();
     alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -241,6 +244,7 @@ std::vector<SetLayoutRecord> Context::setLayouts() const {
 }
 
 void Context::recordSetLayout(SetLayoutRecord record) const {
+    if (!m_validation) return; // a record for checks, which run with validation on
     std::lock_guard lock(m_messagesMutex);
     m_setLayouts.push_back(std::move(record));
 }

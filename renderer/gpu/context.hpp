@@ -97,14 +97,16 @@ public:
                           const std::string& what, VkMemoryPropertyFlags preferred = 0) const;
 
     /// Records commands into a fresh primary command buffer, submits it and
-    /// waits for it to finish.
+    /// waits for it to finish. Safe to call from several threads: the calls
+    /// take turns.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
     /// Validation messages (warnings and errors) seen so far.
     std::vector<std::string> validationMessages() const;
     std::size_t validationMessageCount() const;
 
-    /// Every descriptor set layout made so far on this device, by name.
+    /// Every descriptor set layout made so far on this device, by name, where
+    /// validation is on (as in every test); none otherwise.
     std::vector<SetLayoutRecord> setLayouts() const;
     /// Called by gpu::createSetLayout.
     void recordSetLayout(SetLayoutRecord record) const;
@@ -131,6 +133,7 @@ private:
     VkDevice m_device = VK_NULL_HANDLE;
     VkQueue m_queue = VK_NULL_HANDLE;
     CommandPoolHandle m_commandPool;
+    mutable std::mutex m_submitMutex; ///< the pool and the queue, one submission at a time
     mutable std::mutex m_messagesMutex;
     std::vector<std::string> m_messages;
     mutable std::vector<SetLayoutRecord> m_setLayouts; ///< guarded by m_messagesMutex

@@ -3,6 +3,9 @@
 #include "gpu/check.hpp"
 #include "gpu/resources.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace cutaway::gpu {
 
 ShaderModuleHandle createShaderModule(const Context& ctx, const uint32_t* words,
@@ -112,6 +115,10 @@ DescriptorSet allocateDescriptorSet(const Context& ctx, VkDescriptorSetLayout la
 void writeImageDescriptor(const Context& ctx, VkDescriptorSet set, uint32_t binding,
                           VkDescriptorType type, VkImageView view, VkImageLayout layout,
                           VkSampler sampler) {
+    // An image whose maker did not record its resting layout (Image::layout).
+    if (layout == VK_IMAGE_LAYOUT_UNDEFINED)
+        throw std::logic_error("a descriptor of binding " + std::to_string(binding) +
+                               " names an image in no layout");
     VkDescriptorImageInfo image{sampler, view, layout};
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set;

@@ -104,16 +104,16 @@ bool isNrrdName(const std::filesystem::path& path) {
 
 } // namespace
 
-void checkExportNames(const ExportRequest& request) {
+void checkExportName(const ExportRequest& request) {
     if (!isNrrdName(request.output))
         throw InputError("-o " + request.output.string() + ": expected a .nrrd file name");
-    if (request.labelsOutput && !isNrrdName(*request.labelsOutput))
-        throw InputError("--labels-output " + request.labelsOutput->string() +
-                         ": expected a .nrrd file name");
 }
 
 void checkExportRequest(const Scene& scene, const std::string& sceneName,
                         const ExportRequest& request) {
+    if (request.labelsOutput && !isNrrdName(*request.labelsOutput))
+        throw InputError("--labels-output " + request.labelsOutput->string() +
+                         ": expected a .nrrd file name");
     if (request.labelsOutput && !scene.labels)
         throw InputError("--labels-output " + request.labelsOutput->string() + ": " + sceneName +
                          " has no /labels");

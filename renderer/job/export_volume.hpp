@@ -50,12 +50,13 @@ struct ExportRequest {
     bool compress = true; ///< gzip; false writes raw
 };
 
-/// Refuses outputs not named .nrrd (InputError naming -o or --labels-output).
-void checkExportNames(const ExportRequest& request);
+/// Refuses an output not named .nrrd (InputError naming -o).
+void checkExportName(const ExportRequest& request);
 
-/// Refuses what `cutaway export` cannot write for `scene` (one frame): labels
-/// asked of a scene without /labels (naming `sceneName`), and outputs that
-/// are files the frame reads or each other (checkExportPaths). InputError.
+/// Refuses what `cutaway export` cannot write for `scene` (one frame): a
+/// labels output not named .nrrd or asked of a scene without /labels
+/// (naming --labels-output and `sceneName`), and outputs that are files the
+/// frame reads or each other (checkExportPaths). InputError.
 void checkExportRequest(const Scene& scene, const std::string& sceneName,
                         const ExportRequest& request);
 

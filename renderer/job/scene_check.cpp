@@ -30,11 +30,11 @@ std::vector<OperatorOutside> operatorsOutside(const Scene& scene, glm::dvec3 lo,
 namespace {
 
 // What the volume and label files of a frame depend on: frameVolumeKey
-// without the window and the operators, which change nothing that is read.
+// without the operators, which change nothing that is read. The window
+// stays: non-finite voxels take the value of empty space, which it sets.
 FrameVolumeKey filesKey(const Scene& scene) {
     Scene probe;
     probe.volume = scene.volume;
-    probe.volume.window.reset();
     probe.labels = scene.labels;
     return frameVolumeKey(probe);
 }

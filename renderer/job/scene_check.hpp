@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <map>
 #include <memory>

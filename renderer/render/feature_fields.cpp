@@ -32,6 +32,7 @@ FeatureFields::FeatureFields(const gpu::Context& ctx, bool storageImages)
         ctx, VK_IMAGE_TYPE_3D, bake::kFeatureFieldFormat, {1, 1, 1},
         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
             (storageImages ? VkImageUsageFlags{VK_IMAGE_USAGE_STORAGE_BIT} : VkImageUsageFlags{0}));
+    m_none.layout = bake::kFeatureLayout;
     const uint16_t zero = 0; // one half float
     gpu::uploadImage(ctx, m_none, &zero, sizeof zero, bake::kFeatureLayout,
                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |

@@ -31,6 +31,9 @@ struct PassResources {
     VkSampler nearest;
     /// Set 0 of slicing and of the meshes: the frame's inputs (frame.hpp).
     VkDescriptorSetLayout frameLayout;
+    /// Whether the layouts hold the storage paths' bindings: the shaders'
+    /// flavour must match (ShaderVariant::storageImages).
+    bool storageImages;
     OperatorStack& operators;
     EmptySpace& emptySpace;
     MeshPass& meshes;

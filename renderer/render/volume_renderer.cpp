@@ -31,8 +31,14 @@ VolumeRenderer::VolumeRenderer(const gpu::Context& ctx, const gpu::DeviceTuning&
 VolumeRenderer::~VolumeRenderer() = default;
 
 RenderPass& VolumeRenderer::passFor(const Scene& scene) {
-    const PassResources shared{m_ctx,        m_linear.get(), m_nearest.get(), m_frameLayout.get(),
-                               *m_operators, *m_emptySpace,  *m_meshes};
+    const PassResources shared{m_ctx,
+                               m_linear.get(),
+                               m_nearest.get(),
+                               m_frameLayout.get(),
+                               m_tuning.storageImages(),
+                               *m_operators,
+                               *m_emptySpace,
+                               *m_meshes};
     if (scene.render.method == RenderMethod::Raycast) {
         if (!m_raycast)
             m_raycast = std::make_unique<RaycastPass>(shared, m_operators->setLayout(), m_tuning);

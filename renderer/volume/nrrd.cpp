@@ -343,7 +343,7 @@ void openData(NrrdData& d, const detail::NrrdFields& f, std::istream& in,
 
 /// The `bytes` of raw data, `e.byteSkip` after the stream's position (-1:
 /// the file's last bytes).
-std::vector<std::byte> readRaw(const NrrdData& d, const NrrdEncoding& e, std::size_t bytes) {
+std::vector<std::byte> readRawData(const NrrdData& d, const NrrdEncoding& e, std::size_t bytes) {
     auto start = static_cast<std::uint64_t>(d.stream->tellg());
     if (e.byteSkip == -1) {
         // Data at the end of the file, whatever comes before it.
@@ -412,8 +412,8 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
                              " goes past the end of the file");
         }
     }
-    volume.data =
-        encoding.gzip ? readGzip(data, encoding, grid.bytes) : readRaw(data, encoding, grid.bytes);
+    volume.data = encoding.gzip ? readGzip(data, encoding, grid.bytes)
+                                : readRawData(data, encoding, grid.bytes);
     if (detail::needsSwap(encoding.bigEndian)) {
         detail::swapBytes(volume.data.data(), volume.voxelCount(), voxelSize(grid.type));
     }

@@ -3,13 +3,14 @@
 // surface even when the volume is drawn unshaded). Premultiplied, alpha 1.
 // Only mesh.frag includes it; it is a header to keep the lighting beside shading.h.
 #extension GL_GOOGLE_include_directive : require
+#include "shared/bindings.h"
 #include "shared/frame.h"
 #include "shared/shading.h"
 
 layout(location = 0) in vec3 worldPos;
 layout(location = 1) in vec3 worldNormal;
 layout(location = 2) in vec4 color;
-layout(std140, set = 0, binding = 0) uniform Frame {
+layout(std140, set = 0, binding = CW_BIND_FRAME) uniform Frame {
     FrameUniforms u;
 };
 

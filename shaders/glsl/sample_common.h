@@ -6,8 +6,8 @@
 
 #include "shared/bindings.h"
 
-// What a frame fixes, as specialization constants (see SliceVariant in
-// render/slice_pipeline.hpp and render/raycaster.hpp): the compiler drops the paths a frame does
+// What a frame fixes, as specialization constants (ShaderVariant in
+// render/shader_variant.hpp): the compiler drops the paths a frame does
 // not take. On lavapipe a branch on a uniform still costs both sides, so these halve the cost of a
 // fragment.
 layout(constant_id = CW_SPEC_PREINTEGRATED) const bool cwPreintegrated = false;

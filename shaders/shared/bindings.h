@@ -50,4 +50,11 @@
 #define CW_SPEC_WHOLE_SHININESS 11
 #define CW_SPEC_COUNT 12
 
+#ifdef __cplusplus
+#include "shared/operator_frame.h"
+static_assert(CW_RAY_MAX_OPERATORS == 3 &&
+                  CW_BIND_RAY_BLOCKS + CW_RAY_MAX_OPERATORS <= CW_BIND_RAY_ID,
+              "one blocks binding per ray caster slot (ray_march.h's blocks0..2), before the ids");
+#endif
+
 #endif

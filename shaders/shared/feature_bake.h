@@ -38,7 +38,6 @@ const float kHalfMax = 65504.0f;
 // Largest Gaussian kernel radius, voxels.
 const int kBlurMaxRadius = 32;
 
-// Push constants of every feature bake pass (64 bytes, std430 layout).
 // The feature bakes' set 0 (bake/feature_bake.cpp): the source texture and
 // the three r16f storage images the passes ping-pong between.
 #define CW_FEATURE_BIND_SOURCE 0 // sampler3D: the values or the object mask
@@ -55,6 +54,7 @@ const int kBlurMaxRadius = 32;
 #define CW_RANGES_BIND_FIELD 0 // r16f storage image: the field
 #define CW_RANGES_BIND_OUT 1   // rg8i storage image: each cell's range
 
+// Push constants of every feature bake pass (64 bytes, std430 layout).
 struct FeatureBakeParams {
     ivec3 dims;      // voxels
     int axis;        // edt_envelope, mask_blur: the axis of the lines (0 x, 1 y, 2 z)

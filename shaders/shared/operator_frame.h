@@ -28,11 +28,11 @@ struct OperatorUniforms {
                        // (render/skipping/operator_regions.hpp; the ray caster's skipping)
 };
 
-// Baking: the push constants of operator_bake.comp.
 // The operator bakes' set 0 (bake/operator_bake.cpp).
 #define CW_OPBAKE_BIND_MAP 0         // the map: rgba16f storage image, sampled by the derivatives
 #define CW_OPBAKE_BIND_DERIVATIVES 1 // rgba16f storage image: the map's derivatives
 
+// Baking: the push constants of operator_bake.comp.
 struct OperatorBakeParams {
     vec4 a; // OperatorParams, unpacked (push constants cannot hold nested structs portably)
     vec4 b;

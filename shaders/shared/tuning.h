@@ -22,10 +22,6 @@ const int kBrickVoxels = 8;
 const int kRayCellVoxels = 2;
 // Map texels along a side of an operator's region block: about a brick.
 const int kOperatorBlockTexels = 2;
-// Regions covering more of an operator's box than this are not worth their
-// stencil pass and extra polygon edges: the box is shaded whole (brain_t1's
-// operator, 86 %, renders as fast either way on lavapipe).
-const float kWholeBoxCoverage = 0.85f;
 // Rows of the ray caster's 8x8-pixel tiles per band (shared/tile_order.h): 2
 // measured 3-6 % faster than single rows on ct_head and the frog on
 // lavapipe, 4 about as fast, 8 slower. A GPU does not care.
@@ -38,6 +34,13 @@ const int kStagingMiB = 16;
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
+namespace cutaway::shader {
+// Regions covering more of an operator's box than this are not worth their
+// stencil pass and extra polygon edges: the box is shaded whole (brain_t1's
+// operator, 86 %, renders as fast either way on lavapipe). C++ only.
+inline constexpr double kWholeBoxCoverage = 0.85;
+} // namespace cutaway::shader
+
 static_assert(cutaway::shader::kBrickVoxels % cutaway::shader::kRayCellVoxels == 0 &&
                   ((cutaway::shader::kBrickVoxels / cutaway::shader::kRayCellVoxels) &
                    (cutaway::shader::kBrickVoxels / cutaway::shader::kRayCellVoxels - 1)) == 0,

@@ -18,6 +18,7 @@ struct VisibleRuns {
     ivec4 lo;
     ivec4 hi;
     int bins;
+    int pad0, pad1, pad2; // std430 rounds the struct up to its 16-byte alignment
 };
 
 // Whether some bin that a slab from value `front` to `back` (normalized; the
@@ -36,7 +37,7 @@ CW_NAMESPACE_END
 #ifdef __cplusplus
 static_assert(offsetof(cutaway::shader::VisibleRuns, hi) == 16);
 static_assert(offsetof(cutaway::shader::VisibleRuns, bins) == 32);
-static_assert(sizeof(cutaway::shader::VisibleRuns) == 36);
+static_assert(sizeof(cutaway::shader::VisibleRuns) == 48);
 #endif
 
 #endif

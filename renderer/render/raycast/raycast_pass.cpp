@@ -38,9 +38,9 @@ void RaycastPass::ensureTargets(glm::uvec2 size, bool withMeshes) {
         m_noMeshDepth =
             gpu::createImage(ctx, VK_IMAGE_TYPE_2D, VK_FORMAT_R32_SFLOAT, {1, 1, 1},
                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+        m_noMeshDepth.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
         const float far = 1.0f;
-        gpu::uploadImage(ctx, m_noMeshDepth, &far, sizeof far,
-                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+        gpu::uploadImage(ctx, m_noMeshDepth, &far, sizeof far, m_noMeshDepth.layout,
                          VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
     }
     if (!m_target.image) {

@@ -159,8 +159,8 @@ gpu::Spirv raySpirv(std::size_t operators, bool storage, bool lanes) {
 
 } // namespace
 
-VkPipeline Raycaster::pipelineFor(const ShaderVariant& variant,
-                                  const std::vector<int>& alignments) {
+VkPipeline Raycaster::pipelineFor(ShaderVariant variant, const std::vector<int>& alignments) {
+    variant.storageImages = m_storageImages; // the flavour the layouts were made for
     const auto key = std::make_pair(variant, alignments);
     auto found = m_pipelines.find(key);
     if (found != m_pipelines.end()) return found->second.get();

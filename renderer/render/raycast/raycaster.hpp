@@ -101,7 +101,7 @@ public:
 private:
     /// The pipeline for `variant` and the operators' alignments (none: the
     /// shader without operators).
-    VkPipeline pipelineFor(const ShaderVariant& variant, const std::vector<int>& alignments);
+    VkPipeline pipelineFor(ShaderVariant variant, const std::vector<int>& alignments);
     /// The operators' shader over `tiles`, with `push` for the whole image.
     void recordOperators(VkCommandBuffer cmd, VkDescriptorSet set, const ShaderVariant& variant,
                          const std::vector<Operator>& operators, const TileRect& tiles,

@@ -151,7 +151,7 @@ VisibleValues::Runs VisibleValues::runs() const {
         runs[narrowest].y = runs[narrowest + 1].y;
         runs.erase(runs.begin() + std::ptrdiff_t(narrowest) + 1);
     }
-    Runs result{glm::ivec4(0), glm::ivec4(0), bins};
+    Runs result{glm::ivec4(0), glm::ivec4(0), bins, 0, 0, 0};
     for (std::size_t r = 0; r < runs.size(); ++r) {
         result.lo[int(r)] = runs[r].x;
         result.hi[int(r)] = runs[r].y;

@@ -92,7 +92,12 @@ void SlicingPass::ensureVertexCapacity(std::size_t bytes) {
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, gpu::HostAccess::Write);
 }
 
-VkPipeline SlicingPass::pipelineFor(const ShaderVariant& variant, SliceProxy proxy) {
+VkPipeline SlicingPass::pipelineFor(ShaderVariant variant, SliceProxy proxy) {
+    // What only the ray caster reads would make another, identical pipeline;
+    // the flavour is the one the layouts were made for.
+    variant.census = false;
+    variant.yieldLanes = false;
+    variant.storageImages = m_shared.storageImages;
     const auto key = std::make_pair(variant, proxy);
     auto found = m_pipelines.find(key);
     if (found == m_pipelines.end())

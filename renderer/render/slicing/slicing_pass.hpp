@@ -44,7 +44,7 @@ private:
     void ensureTargets(glm::uvec2 size, bool withOperatorId);
     void ensureVertexCapacity(std::size_t bytes);
     /// The pipeline of `proxy`'s polygons for `variant`, made on first use.
-    VkPipeline pipelineFor(const ShaderVariant& variant, SliceProxy proxy);
+    VkPipeline pipelineFor(ShaderVariant variant, SliceProxy proxy);
     /// The meshes, the chunks of slices and the copies to the readbacks.
     void record(VkCommandBuffer cmd, const Frame& frame, const SliceSet& slices,
                 VkDescriptorSet frameSet, VkDescriptorSet saturationSet);
