@@ -15,7 +15,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 BUILD_TYPE ?= Release
 
-.PHONY: all deps configure build demo test test-sanitize fuzz bench gallery clean format build-files lint
+.PHONY: all deps configure build demo test test-sanitize fuzz bench quality gallery clean format build-files lint
 
 all: build
 
@@ -97,6 +97,10 @@ bench: configure
 	@xvfb-run -a /usr/bin/python3 bench/vtk_bench.py $(BUILD)/bench/vtk bench/results.json \
 	  --cutaway-bench $(BUILD)/bench/cutaway_bench
 	@/usr/bin/python3 bench/report.py bench/results.json docs/performance.md
+
+quality: configure ## each gallery scene at its settings against converged (docs/quality.md)
+	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway_quality
+	@$(BUILD)/bench/cutaway_quality $(QUALITY_ARGS)
 
 gallery: configure
 	@cmake --build $(BUILD) --parallel $(JOBS) --target cutaway

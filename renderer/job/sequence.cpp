@@ -92,6 +92,9 @@ nlohmann::json recordedScene(const Scene& frame) {
     if (document.is_object()) {
         document.erase("animation");
         document["render"]["size"] = {frame.render.width, frame.render.height};
+        // The jittered offsets' seed, which defaults to the frame number.
+        if (frame.render.jitter)
+            document["render"]["seed"] = frame.render.seed.value_or(frame.frame);
     }
     return document;
 }

@@ -101,6 +101,30 @@ void VolumeRenderer::ensureMeshTargets(glm::uvec2 size, bool withMeshes) {
     m_meshSize = size;
 }
 
+Image VolumeRenderer::renderPasses(RenderPass& pass, const Frame& frame,
+                                   shader::FrameUniforms& uniforms) {
+    // /render/samples passes, each with its samples a further fraction of the
+    // spacing along the rays (shared/sampling.h), averaged; the operator ids
+    // are the first pass's.
+    const int passes = frame.scene.render.samples;
+    Image sum;
+    for (int k = 0; k < passes; ++k) {
+        uniforms.sampling.y = static_cast<float>(k) / static_cast<float>(passes);
+        std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
+        Image image = pass.render(frame, m_stats);
+        if (k == 0) {
+            sum = std::move(image);
+            continue;
+        }
+        for (std::size_t i = 0; i < sum.rgba.size(); ++i)
+            sum.rgba[i] += image.rgba[i];
+    }
+    if (passes > 1)
+        for (float& v : sum.rgba)
+            v /= static_cast<float>(passes);
+    return sum;
+}
+
 Image VolumeRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const glm::uvec2 size(scene.render.width, scene.render.height);
     m_operators->update(scene.operators, volume);
@@ -108,9 +132,8 @@ Image VolumeRenderer::render(const Scene& scene, const GpuVolume& volume) {
     const FrameGeometry geometry = frameGeometry(scene, volume, *m_operators, meshBounds);
     m_emptySpace->update(scene, volume, geometry.marginVoxels, scene.operators.size());
     m_classification.update(scene, volume, geometry.sliceMm);
-    const shader::FrameUniforms uniforms =
+    shader::FrameUniforms uniforms =
         frameUniforms(scene, volume, geometry.camera, geometry.sliceMm);
-    std::memcpy(m_uniforms.mapped, &uniforms, sizeof(uniforms));
     const bool withMeshes = !m_meshes->empty();
     ensureMeshTargets(size, withMeshes);
     const Frame frame{scene,
@@ -122,7 +145,7 @@ Image VolumeRenderer::render(const Scene& scene, const GpuVolume& volume) {
                       withMeshes ? &m_meshColor : nullptr,
                       withMeshes ? &m_meshReadback : nullptr};
     m_stats = {0, 0, m_operators->bakes()};
-    Image image = passFor(scene).render(frame, m_stats);
+    Image image = renderPasses(passFor(scene), frame, uniforms);
     if (withMeshes) compositeMeshes(image, readImage(m_ctx, m_meshReadback, size.x, size.y));
     // A census counts samples: no background behind the counts.
     if (!frame.variant.census || scene.render.method != RenderMethod::Raycast)

@@ -25,6 +25,7 @@
 #include "render/render_pass.hpp"
 #include "render/skipping/empty_space.hpp"
 #include "scene/scene.hpp"
+#include "shared/frame.h"
 
 #include <memory>
 #include <string>
@@ -80,6 +81,9 @@ private:
     void ensureMeshTargets(glm::uvec2 size, bool withMeshes);
     /// The pass `scene` asks for.
     RenderPass& passFor(const Scene& scene);
+    /// `frame` by `pass`, once per /render/samples with each pass's offset
+    /// written into `uniforms`, averaged.
+    Image renderPasses(RenderPass& pass, const Frame& frame, shader::FrameUniforms& uniforms);
 
     const gpu::Context& m_ctx;
     gpu::DeviceTuning m_tuning;

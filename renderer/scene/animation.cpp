@@ -208,7 +208,11 @@ std::string namingTracks(const std::string& message, const std::string& source,
 } // namespace
 
 Scene sceneAtFrame(const Scene& scene, int frame) {
-    if (scene.animation.tracks.empty()) return scene;
+    if (scene.animation.tracks.empty()) {
+        Scene s = scene;
+        s.frame = frame;
+        return s;
+    }
     const std::string source =
         (scene.file.empty() ? std::string("<string>") : scene.file.string()) + " (frame " +
         std::to_string(frame) + ")";
@@ -216,6 +220,7 @@ Scene sceneAtFrame(const Scene& scene, int frame) {
     try {
         Scene s = parseScene(document, scene.baseDir, source);
         s.file = scene.file;
+        s.frame = frame;
         return s;
     } catch (const InputError& e) {
         throw InputError(namingTracks(e.what(), source, scene.animation));

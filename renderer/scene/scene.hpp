@@ -145,6 +145,15 @@ struct RenderSettings {
     /// /render/termination_opacity, [0.5, 1]: see kDefaultTerminationOpacity
     double terminationOpacity = kDefaultTerminationOpacity;
     Shading shading;
+    /// /render/jitter: each pixel's samples shifted along its ray by its own
+    /// fraction of the slice spacing (shared/sampling.h), turning the slices'
+    /// rings into fine noise.
+    bool jitter = false;
+    /// /render/samples, [1, 64]: passes with evenly spread offsets, averaged.
+    int samples = 1;
+    /// /render/seed, >= 0: what varies the offsets between frames; none: the
+    /// frame number (Scene::frame).
+    std::optional<int> seed;
 };
 
 enum class PixelType { Half, Float };
@@ -267,6 +276,9 @@ struct Scene {
     std::vector<MeshSpec> meshes;
     Animation animation;
     nlohmann::json document; ///< the validated JSON as given (for EXR headers)
+    /// The frame this scene is of (sceneAtFrame; the first frame for a scene
+    /// as parsed): the default seed of the sampling offsets.
+    int frame = 0;
 };
 
 /// Parses and validates a scene document. Every problem found is reported at

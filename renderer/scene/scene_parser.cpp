@@ -39,6 +39,13 @@ namespace scene_detail {
 ///                   A pixel takes no more samples once its opacity reaches this
 ///                   (early ray termination); what lies behind could change a
 ///                   channel by at most 1 minus it. 1: every sample that can show.
+///  * jitter         boolean, default false: each pixel's samples shifted along its
+///                   ray by its own fraction of the slice spacing, so the slices'
+///                   rings become fine noise (the same offsets in both methods)
+///  * samples        integer, in [1, 64], default 1: passes with evenly spread
+///                   offsets, averaged (each costs a frame's rendering)
+///  * seed           integer, in [0, 2147483647], default the frame number: what
+///                   varies the offsets from frame to frame
 ///  * shading        object, default {}: Blinn-Phong material of every sample
 ///    * enabled      boolean, default true: false shows the transfer function's colours unlit
 ///    * diffuse      number, in [0, 1], default 0.8
@@ -82,6 +89,9 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
     render.method = method == "raycast" ? RenderMethod::Raycast : RenderMethod::Slicing;
     render.terminationOpacity =
         reader.number("termination_opacity", render.terminationOpacity, 0.5, 1.0);
+    render.jitter = reader.boolean("jitter", render.jitter);
+    render.samples = int(reader.integer("samples", render.samples, 1, 64));
+    if (reader.find("seed")) render.seed = int(reader.integer("seed", 0, 0, 2147483647));
 
     reader.object("shading", [&](JsonReader& shading) {
         Shading& s = render.shading;
@@ -173,6 +183,7 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     root.object("render", [&](JsonReader& reader) { parseRender(reader, scene.render); });
     root.object("output", [&](JsonReader& reader) { parseOutput(reader, scene.output); });
     root.object("animation", [&](JsonReader& reader) { parseAnimation(reader, scene.animation); });
+    scene.frame = scene.animation.firstFrame;
     parseOperators(root, scene.operators, scene.labels);
     parseMeshes(root, scene.meshes, scene.operators.size(), baseDir);
     // Sequential composition resamples the scan but not its labels or masks.

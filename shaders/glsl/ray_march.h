@@ -482,7 +482,9 @@ void main() {
     m.obliquity = obliquityOf(m.toEye);
     m.spacing = u.viewDir.w;
     m.fd = dot(u.viewDir.xyz, m.dir);
-    m.so = dot(u.viewDir.xyz, m.origin);
+    // The pixel's samples lie this far behind the planes (shared/sampling.h):
+    // the lattice moves by it along the view.
+    m.so = dot(u.viewDir.xyz, m.origin) - sampleOffset(vec2(pixel) + 0.5, u.sampling) * m.spacing;
 
     // The untouched volume's samples: those in the occupied cells' bounds.
     vec2 t = rayThroughBox(m.origin, m.dir, ray.boxLo.xyz, ray.boxHi.xyz);

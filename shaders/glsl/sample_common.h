@@ -54,6 +54,7 @@ float specularPower(float x, float n) {
 
 #include "shared/frame.h"
 #include "shared/gradient.h"
+#include "shared/sampling.h"
 #include "shared/shading.h"
 
 layout(std140, set = 0, binding = CW_BIND_FRAME) uniform Frame {

@@ -18,13 +18,15 @@ void main() {
     vec3 toEye = toEyeFrom(worldPos);
     float obliquity = obliquityOf(toEye);
     float stepMm = u.viewDir.w * obliquity;
-    Resolved front = resolve(op, operatorMap, featureTex, 0, cwAlignment, worldPos);
+    // The pixel's samples lie this far behind the plane (shared/sampling.h).
+    vec3 at = worldPos - toEye * (sampleOffset(gl_FragCoord.xy, u.sampling) * stepMm);
+    Resolved front = resolve(op, operatorMap, featureTex, 0, cwAlignment, at);
     Resolved back = front; // post-classified slices have no back
     if (cwPreintegrated)
-        back = resolve(op, operatorMap, featureTex, 0, cwAlignment, worldPos - toEye * stepMm);
+        back = resolve(op, operatorMap, featureTex, 0, cwAlignment, at - toEye * stepMm);
     bool moved;
     vec4 c = shadeOperatorSlab(op, operatorDerivatives, featureTex, 0, cwAlignment,
-                               operatorSlab(cwAlignment, front, back), worldPos, viewerOf(toEye, u),
+                               operatorSlab(cwAlignment, front, back), at, viewerOf(toEye, u),
                                obliquity, stepMm, moved);
     emit(c, moved ? op.band.y : CW_ID_BACKGROUND);
 }

@@ -26,13 +26,15 @@ struct FrameUniforms {
     vec4 termination;               // x: early ray termination: a pixel whose composited opacity
                       // reaches this takes no more samples (/render/termination_opacity;
                       // what lies behind could add at most 1 - x to any channel)
+    vec4 sampling; // where along the rays the samples lie (shared/sampling.h): x 1 with
+                   // /render/jitter, y this pass's offset in spacings, z the seed
 };
 
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
 static_assert(sizeof(cutaway::shader::FrameUniforms) ==
-              2 * 64 + 5 * 16 + 2 * CW_MAX_LIGHTS * 16 + 2 * 16);
+              2 * 64 + 5 * 16 + 2 * CW_MAX_LIGHTS * 16 + 3 * 16);
 static_assert(offsetof(cutaway::shader::FrameUniforms, worldToTexture) == 64);
 static_assert(offsetof(cutaway::shader::FrameUniforms, eye) == 128);
 static_assert(offsetof(cutaway::shader::FrameUniforms, headlight) == 192);
@@ -40,6 +42,7 @@ static_assert(offsetof(cutaway::shader::FrameUniforms, lightDir) == 208);
 static_assert(offsetof(cutaway::shader::FrameUniforms, lightColor) == 208 + 16 * CW_MAX_LIGHTS);
 static_assert(offsetof(cutaway::shader::FrameUniforms, flags) == 208 + 32 * CW_MAX_LIGHTS);
 static_assert(offsetof(cutaway::shader::FrameUniforms, termination) == 224 + 32 * CW_MAX_LIGHTS);
+static_assert(offsetof(cutaway::shader::FrameUniforms, sampling) == 240 + 32 * CW_MAX_LIGHTS);
 #endif
 
 #endif

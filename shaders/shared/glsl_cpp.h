@@ -30,6 +30,7 @@ using glm::cos;
 using glm::cross;
 using glm::dot;
 using glm::floor;
+using glm::fract;
 using glm::inverse;
 using glm::length;
 using glm::lessThan;
