@@ -53,13 +53,11 @@ std::vector<SceneSetting> convergedSettings() {
     return {{"/render/slice_spacing", 0.125}, {"/render/termination_opacity", 1.0}};
 }
 
+// --set and --try values, read as the command line's --set is (its limits too).
 std::vector<SceneSetting> parseSets(const std::vector<std::string>& sets) {
     std::vector<SceneSetting> out;
-    for (const std::string& s : sets) {
-        const auto eq = s.find('=');
-        if (eq == std::string::npos) throw InputError("--set " + s + ": expected /pointer=value");
-        out.push_back({s.substr(0, eq), nlohmann::json::parse(s.substr(eq + 1))});
-    }
+    for (const std::string& s : sets)
+        out.push_back(parseSetting(s));
     return out;
 }
 
@@ -123,18 +121,26 @@ int main(int argc, char** argv) {
         for (std::stringstream in(scenes); std::getline(in, scenes, ',');)
             names.push_back(scenes);
 
+    std::vector<SceneSetting> both, tried;
+    try {
+        both = parseSets(sets);
+        tried = parseSets(tries);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "cutaway_quality: %s\n", e.what());
+        return 2;
+    }
     gpu::Context ctx;
     nlohmann::json records = nlohmann::json::array();
     std::printf("| scene | PSNR dB | pixels off > 4/255 | largest error | default s | "
                 "converged s |\n|---|---|---|---|---|---|\n");
     for (const std::string& name : names) {
         try {
-            std::vector<SceneSetting> base = parseSets(sets);
+            std::vector<SceneSetting> base = both;
             base.push_back({"/render/size", {size, size}});
             std::vector<SceneSetting> fine = base;
             for (const SceneSetting& s : convergedSettings())
                 fine.push_back(s);
-            for (const SceneSetting& s : parseSets(tries))
+            for (const SceneSetting& s : tried)
                 base.push_back(s);
             const std::string file = "scenes/" + name + ".json";
             const Rendered def = renderTimed(ctx, loadScene(file, base));

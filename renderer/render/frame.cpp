@@ -110,7 +110,7 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
                         preintegrated ? 1.0f : 0.0f, byLabel ? 1.0f : 0.0f);
     u.termination =
         glm::vec4(static_cast<float>(scene.render.terminationOpacity), 0.0f, 0.0f, 0.0f);
-    // The pass's offset is set per pass (VolumeRenderer::render); the seed
+    // The pass's offset is set per pass (VolumeRenderer::renderPasses); the seed
     // wraps at 2^16 so that float keeps it whole.
     const int seed = scene.render.seed.value_or(scene.frame);
     u.sampling =
