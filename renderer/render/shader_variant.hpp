@@ -33,6 +33,10 @@ struct ShaderVariant {
     /// The shading's shininess when it is a whole number, else 0: the
     /// specular power by repeated squaring (sample_common.h's specularPower).
     int wholeShininess = 0;
+    /// /render/filter "cubic": the values and gradients reconstructed by
+    /// the tricubic Catmull-Rom filter (shared/cubic_filter.h) instead of
+    /// trilinearly.
+    bool cubic = false;
     /// The ray caster's lanes that step over transparent samples stop for a
     /// pass of shading as soon as one lane waits (ray_march.h's
     /// CW_YIELD_LANES, the "lanes" flavour). Slicing ignores it.
@@ -56,7 +60,7 @@ public:
     const VkSpecializationInfo* info() const { return &m_info; }
 
 private:
-    static constexpr uint32_t kCount = 12; ///< CW_SPEC_COUNT
+    static constexpr uint32_t kCount = 13; ///< CW_SPEC_COUNT
     uint32_t m_values[kCount];
     VkSpecializationMapEntry m_entries[kCount];
     VkSpecializationInfo m_info;

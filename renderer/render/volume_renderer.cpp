@@ -63,6 +63,7 @@ ShaderVariant VolumeRenderer::variantFor(const Scene& scene, const GpuVolume& vo
     if (m_tuning.storageValues) v.storageFetch = bake::ValueStorageBindings::fetchOf(volume.values);
     v.brickedGradients = volume.gradientLayout == bake::GradientLayout::Bricked;
     v.wholeShininess = wholeShininess(scene.render.shading);
+    v.cubic = scene.render.filter == Filter::Cubic;
     v.yieldLanes = m_tuning.yieldLanes;
     v.census = m_census;
     return v;

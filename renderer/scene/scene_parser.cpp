@@ -46,6 +46,8 @@ namespace scene_detail {
 ///                   offsets, averaged (each costs a frame's rendering)
 ///  * seed           integer, in [0, 2147483647], default the frame number: what
 ///                   varies the offsets from frame to frame
+///  * filter         "linear" or "cubic", default "linear": how values and
+///                   gradients are reconstructed between voxels (see Filter)
 ///  * shading        object, default {}: Blinn-Phong material of every sample
 ///    * enabled      boolean, default true: false shows the transfer function's colours unlit
 ///    * diffuse      number, in [0, 1], default 0.8
@@ -92,6 +94,10 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
     render.jitter = reader.boolean("jitter", render.jitter);
     render.samples = int(reader.integer("samples", render.samples, 1, 64));
     if (reader.find("seed")) render.seed = int(reader.integer("seed", 0, 0, 2147483647));
+    render.filter = reader.string("filter", render.filter == Filter::Cubic ? "cubic" : "linear",
+                                  {"linear", "cubic"}) == "cubic"
+                        ? Filter::Cubic
+                        : Filter::Linear;
 
     reader.object("shading", [&](JsonReader& shading) {
         Shading& s = render.shading;

@@ -108,6 +108,32 @@ float featureVoxel(sampler3D feature, int slot, int mode, ivec3 voxel) {
     return texelFetch(feature, voxel, 0).r;
 }
 
+// The feature field (r: DT or M; g: the value moved material reads) at
+// feature coordinate `at` by /render/filter "cubic": Catmull-Rom over the
+// 4^3 texels around it, held to the range of its cell's eight as volumeAt's
+// values are (so the field ranges' skipping holds).
+vec2 featureCubic(sampler3D feature, int slot, int mode, vec3 at) {
+    bool loaded = featureLoaded(mode);
+    ivec3 dims = loaded ? featureImageSize(slot) : textureSize(feature, 0);
+    CubicCell c = cubicCell(at, dims);
+    vec2 sum = vec2(0.0), lo = vec2(1e30), hi = vec2(-1e30);
+    for (int z = 0; z < 4; ++z)
+        for (int y = 0; y < 4; ++y) {
+            vec2 row = vec2(0.0);
+            for (int x = 0; x < 4; ++x) {
+                ivec3 p = clamp(c.first + ivec3(x, y, z), ivec3(0), dims - 1);
+                vec2 v = loaded ? vec2(featureTexel(slot, p), 0.0) : texelFetch(feature, p, 0).rg;
+                row += c.wx[x] * v;
+                if ((x == 1 || x == 2) && (y == 1 || y == 2) && (z == 1 || z == 2)) {
+                    lo = min(lo, v);
+                    hi = max(hi, v);
+                }
+            }
+            sum += (c.wz[z] * c.wy[y]) * row;
+        }
+    return clamp(sum, lo, hi);
+}
+
 // The feature texture's coordinate of the volume's texture coordinate tc.
 vec3 featureTcOf(OperatorUniforms op, vec3 tc) {
     return tc * op.featureTc.xyz + op.featureTc0.xyz;
@@ -122,11 +148,11 @@ float maskAt(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc
     moving = 0.0;
     if (mode == CW_ALIGN_AXIS) return 0.0;
     vec3 at = featureTcOf(op, tc);
-    if (featureLoaded(mode)) {
+    if (featureLoaded(mode) && !cwCubic) {
         f = featureFiltered(slot, at);
         return surfaceMask(f, op.align.y, op.align.z);
     }
-    vec2 texel = textureLod(feature, at, 0.0).rg;
+    vec2 texel = cwCubic ? featureCubic(feature, slot, mode, at) : textureLod(feature, at, 0.0).rg;
     f = texel.r;
     if (mode == CW_ALIGN_SURFACE) return surfaceMask(f, op.align.y, op.align.z);
     moving = texel.g;

@@ -32,6 +32,10 @@ layout(constant_id = CW_SPEC_BRICKED_GRADIENTS) const bool cwBrickedGradients = 
 const int cwStorageFetch = 0;
 const bool cwBrickedGradients = false;
 #endif
+// /render/filter: false linear (the sampler's trilinear filter), true the
+// tricubic Catmull-Rom filter (shared/cubic_filter.h) for the values and the
+// gradients.
+layout(constant_id = CW_SPEC_CUBIC) const bool cwCubic = false;
 // The shininess when it is a whole number (scene range: up to 512), else 0.
 layout(constant_id = CW_SPEC_WHOLE_SHININESS) const int cwWholeShininess = 0;
 #define CW_SHADING_ON(u) cwShading
@@ -52,6 +56,7 @@ float specularPower(float x, float n) {
 }
 #define CW_SPECULAR_POWER(x, n) specularPower(x, n)
 
+#include "shared/cubic_filter.h"
 #include "shared/frame.h"
 #include "shared/gradient.h"
 #include "shared/sampling.h"
@@ -135,7 +140,7 @@ float weighTexels(vec3 f, vec4 near, vec4 far) {
 // to the edge, as textureLod(volumeTex, tc, 0.0).r samples it. With
 // cwStorageFetch the eight texels are loaded and weighted here, in full float
 // precision (lavapipe filters 8-bit textures with 8-bit weights).
-float volumeAt(vec3 tc) {
+float volumeLinearAt(vec3 tc) {
     if (cwStorageFetch == 0) return textureLod(volumeTex, tc, 0.0).r;
     Trilinear t = trilinearAt(tc, valueImageSize());
     ivec3 lo = t.lo, hi = t.hi;
@@ -160,7 +165,7 @@ vec4 gradientTexel(ivec3 voxel) {
 // from the grid's rows and slices, about 4 cache lines a sample, where the
 // bricked texels share about 3, and the next samples' mostly the same
 // (docs/design/cpu-device-paths.md).
-vec4 gradientAt(vec3 tc) {
+vec4 gradientLinearAt(vec3 tc) {
     if (!cwBrickedGradients) return textureLod(gradientTex, tc, 0.0);
     Trilinear t = trilinearAt(tc, textureSize(volumeTex, 0)); // the grid, not the bricks
     ivec3 lo = t.lo, hi = t.hi;
@@ -171,6 +176,59 @@ vec4 gradientAt(vec3 tc) {
         mix(gradientTexel(ivec3(lo.xy, hi.z)), gradientTexel(ivec3(hi.x, lo.y, hi.z)), t.f.x);
     vec4 x11 = mix(gradientTexel(ivec3(lo.x, hi.yz)), gradientTexel(hi), t.f.x);
     return mix(mix(x00, x10, t.f.y), mix(x01, x11, t.f.y), t.f.z);
+}
+
+// The value texel at voxel p, loaded from the storage image or fetched
+// from volumeTex, as cwStorageFetch says.
+float valueVoxel(ivec3 p) {
+    return cwStorageFetch == 0 ? texelFetch(volumeTex, p, 0).r : valueTexel(p);
+}
+
+// The gradient texel of voxel p, loaded from the bricks or fetched from
+// gradientTex, as cwBrickedGradients says.
+vec4 gradientVoxel(ivec3 p) {
+    return cwBrickedGradients ? gradientTexel(p) : texelFetch(gradientTex, p, 0);
+}
+
+// The volume's value at tc as /render/filter reconstructs it: volumeLinearAt,
+// or Catmull-Rom over the 4^3 texels around tc (shared/cubic_filter.h), held
+// to the range of the eight of its cell.
+float volumeAt(vec3 tc) {
+    if (!cwCubic) return volumeLinearAt(tc);
+    ivec3 dims = textureSize(volumeTex, 0);
+    CubicCell c = cubicCell(tc, dims);
+    float sum = 0.0, lo = 1.0, hi = 0.0;
+    for (int z = 0; z < 4; ++z)
+        for (int y = 0; y < 4; ++y) {
+            float row = 0.0;
+            for (int x = 0; x < 4; ++x) {
+                float v = valueVoxel(clamp(c.first + ivec3(x, y, z), ivec3(0), dims - 1));
+                row += c.wx[x] * v;
+                if ((x == 1 || x == 2) && (y == 1 || y == 2) && (z == 1 || z == 2)) {
+                    lo = min(lo, v);
+                    hi = max(hi, v);
+                }
+            }
+            sum += c.wz[z] * c.wy[y] * row;
+        }
+    return clamp(sum, lo, hi);
+}
+
+// The gradient at tc as /render/filter reconstructs it, as volumeAt does
+// the values (not held to a range: a direction and a magnitude).
+vec4 gradientAt(vec3 tc) {
+    if (!cwCubic) return gradientLinearAt(tc);
+    ivec3 dims = textureSize(volumeTex, 0); // the grid, not the bricks
+    CubicCell c = cubicCell(tc, dims);
+    vec4 sum = vec4(0.0);
+    for (int z = 0; z < 4; ++z)
+        for (int y = 0; y < 4; ++y) {
+            vec4 row = vec4(0.0);
+            for (int x = 0; x < 4; ++x)
+                row += c.wx[x] * gradientVoxel(clamp(c.first + ivec3(x, y, z), ivec3(0), dims - 1));
+            sum += (c.wz[z] * c.wy[y]) * row;
+        }
+    return sum;
 }
 
 vec3 toEyeFrom(vec3 world) {

@@ -48,7 +48,8 @@
 #define CW_SPEC_CENSUS 9
 #define CW_SPEC_BRICKED_GRADIENTS 10
 #define CW_SPEC_WHOLE_SHININESS 11
-#define CW_SPEC_COUNT 12
+#define CW_SPEC_CUBIC 12 // /render/filter "cubic"
+#define CW_SPEC_COUNT 13
 
 #ifdef __cplusplus
 #include "shared/operator_frame.h"

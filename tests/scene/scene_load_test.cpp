@@ -205,6 +205,7 @@ const std::map<std::string, std::string> kBadScenes = {
      ":4:38: JSON syntax error: while parsing object - unexpected end of input"},
     {"52-size-zero.json", ": /volume/size/1: expected an integer in [8, 1024], got 0"},
     {"53-nan-literal.json", ":4:22: JSON syntax error: while parsing value - invalid literal"},
+    {"54-filter-unknown.json", ": /render/filter: expected one of \"linear\", \"cubic\""},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {
