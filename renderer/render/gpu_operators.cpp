@@ -38,6 +38,10 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
                              : (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
     u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), static_cast<float>(index + 3),
                        0.0f, 0.0f); // id code: see slice_common.h
+    if (spec.cutFace) {             // its layer in the same units as D
+        u.band.z = static_cast<float>(spec.cutFace->depth / scale);
+        u.cutFace = glm::vec4(spec.cutFace->color, static_cast<float>(spec.cutFace->mix));
+    }
     const Alignment& al = spec.alignment;
     const float mode = static_cast<float>(alignmentCode(al.mode));
     u.align = glm::vec4(mode, static_cast<float>(al.depth), static_cast<float>(al.band),

@@ -240,6 +240,15 @@ struct OperatorGlyph {
     double width = 0.0; ///< mm, thickness of the outline's bars; 0 = 1/300 of the volume's diagonal
 };
 
+/// /operators/N/cut_face: the flat colour illustrators give the faces an
+/// operator cuts (the "capped" cross-section of anatomical drawings), mixed
+/// over the data's colour in a layer under them. Peelers and retractors only.
+struct CutFace {
+    glm::vec3 color{1.0f}; ///< linear RGB
+    double mix = 1.0;      ///< [0, 1]: 0 the data's colour, 1 the cut face's
+    double depth = 1.0;    ///< mm: how deep under the cut the layer reaches
+};
+
 /// /operators/N: one manipulation operator (paper section 3; docs/operators.md).
 /// Its box is the unit cube [-1, 1]^3 of its local frame, placed in the world
 /// by `localToWorld` (Eq. 8: translate, rotate, scale, or a matrix); the
@@ -254,7 +263,8 @@ struct OperatorSpec {
     Alignment alignment;       ///< /operators/N/alignment
     std::string name;          ///< /operators/N/name, for messages; default "operator N (type)"
     OperatorGlyph glyph;       ///< /operators/N/glyph
-    int index = 0;             ///< N, for messages that point into the scene
+    std::optional<CutFace> cutFace; ///< /operators/N/cut_face; none: the data's own colour
+    int index = 0;                  ///< N, for messages that point into the scene
 };
 
 /// /meshes/N: an opaque glTF 2.0 model (.gltf or .glb) drawn with depth before

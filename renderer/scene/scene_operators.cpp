@@ -222,6 +222,26 @@ void parseGlyph(JsonReader& r, OperatorGlyph& glyph) {
     });
 }
 
+/// /operators/N/cut_face: an object, for peelers and retractors (pliers and
+/// dilators cut nothing).
+///  * color   [number x3], linear RGB in [0, 1], required
+///  * mix     number in [0, 1], default 1: how much of it over the data's colour
+///  * depth   number, mm, in (0, 1000], default 1: the layer under the cut it colours
+void parseCutFace(JsonReader& r, const std::string& type, std::optional<CutFace>& cutFace) {
+    if (!r.find("cut_face")) return;
+    if (type == "pliers" || type == "dilator") {
+        r.error("cut_face", type + " cut nothing: only \"peeler\" and \"retractor\" take it");
+        return;
+    }
+    r.object("cut_face", [&](JsonReader& c) {
+        CutFace face;
+        face.color = c.colour("color", true).value_or(face.color);
+        face.mix = c.number("mix", face.mix, Range::closed(0.0, 1.0));
+        face.depth = c.number("depth", face.depth, Range::openClosed(0.0, 1000.0));
+        cutFace = face;
+    });
+}
+
 } // namespace
 
 /// /operators: an array of manipulation operators, rendered together; their
@@ -236,6 +256,7 @@ void parseGlyph(JsonReader& r, OperatorGlyph& glyph) {
 ///  * normal_band  number, mm, in [0, 1000], default 2: D of Eq. 7, the band over
 ///                 which normals blend to the cut's normal
 ///  * glyph        boolean or object, default false: the box's outline, see parseGlyph
+///  * cut_face     object, default none: the colour of cut faces, see parseCutFace
 void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
                     const std::optional<LabelSource>& labels) {
     root.objects("operators", 0, 8, [&](JsonReader& r, std::size_t index) {
@@ -253,6 +274,7 @@ void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
         op.resolution = glm::ivec3(static_cast<int>(resolution));
         op.normalBand = r.number("normal_band", op.normalBand, Range::closed(0.0, 1000.0));
         parseGlyph(r, op.glyph);
+        parseCutFace(r, type, op.cutFace);
         const glm::dvec3 h = halfSize;
         r.object("params", [&](JsonReader& p) {
             if (type == "peeler") peeler(p, h, op.params);

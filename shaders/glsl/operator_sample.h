@@ -294,6 +294,15 @@ float bandMean(float a, float b, float d) {
     return (rampIntegral(b, d) - rampIntegral(a, d)) / (b - a);
 }
 
+// The share of a slab of kept, moved material (w from wNear to wFar) that
+// lies in the cut face's layer, 0 < w < its depth (OperatorUniforms.cutFace,
+// band.z): the mean over the slab, softened over a tenth of the depth, so
+// the layer's inner edge shows no slices.
+float cutFaceShare(OperatorUniforms op, float wNear, float wFar) {
+    float depth = op.band.z;
+    return bandMean(depth - wNear, depth - wFar, 0.1 * depth);
+}
+
 // What the operator makes of the slab from p' (resolved `front`) to the next
 // plane along the ray (`back`; post-classified frames have no back and pass
 // the front again): the values it classifies, the part the cut leaves, and
@@ -381,6 +390,8 @@ vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D fea
     vec3 shadePoint = world - viewer.toEye * (s.shadeAt * stepMm);
     vec4 c = classifySlab(s.frontValue, s.backValue, obliquity * s.kept, layer);
     if (c.a <= 0.0) return vec4(0.0);
+    if (op.cutFace.w > 0.0 && !masked) // premultiplied: the face's colour times the opacity
+        c.rgb = mix(c.rgb, op.cutFace.rgb * c.a, op.cutFace.w * cutFaceShare(op, s.wNear, s.wFar));
 
     // One gradient fetch and one feature gradient for both cases below: on
     // SIMD CPUs both sides of a branch run, so a call in each would cost twice.

@@ -18,7 +18,8 @@ struct OperatorUniforms {
     mat4 localToWorld; // A of Eq. 8
     vec4 mapLo;        // xyz: local corner of the baked map's domain (the deformed box V'_T)
     vec4 mapHi;        // xyz: opposite corner; w: one texel of the map, local units
-    vec4 band;         // x: D of Eq. 7 in local units (0: no blending); y: id code, 3 + index
+    vec4 band;         // x: D of Eq. 7 in local units (0: no blending); y: id code, 3 + index;
+                       // z: the cut face's layer, local units (cutFace)
     vec4 align;        // x: CW_ALIGN_* (feature.h); y: tau, z: delta (mm, surface);
                        // w: delta for segment alignment's mask (mm, informational)
     vec4 featureScale; // xyz: 1 / (2 spacing) of the feature field's grid, 1/mm
@@ -26,6 +27,7 @@ struct OperatorUniforms {
     vec4 featureTc0;   // plus featureTc0.xyz (segment alignment's texture covers a region)
     vec4 blocks;       // xyz: the map's texels across its domain / the texels per block
                        // (render/skipping/operator_regions.hpp; the ray caster's skipping)
+    vec4 cutFace;      // /operators/N/cut_face: rgb its colour, w its mix (0: none)
 };
 
 // The operator bakes' set 0 (bake/operator_bake.cpp).
@@ -46,7 +48,7 @@ struct OperatorBakeParams {
 CW_NAMESPACE_END
 
 #ifdef __cplusplus
-static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 8 * 16);
+static_assert(sizeof(cutaway::shader::OperatorUniforms) == 2 * 64 + 9 * 16);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, align) == 176);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, mapLo) == 128);
 static_assert(offsetof(cutaway::shader::OperatorUniforms, band) == 160);

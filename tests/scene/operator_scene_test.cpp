@@ -70,4 +70,42 @@ TEST(OperatorScene, BadPlacementsAreReported) {
         std::string::npos);
 }
 
+TEST(OperatorScene, CutFaceIsForOperatorsThatCut) {
+    const OperatorSpec op =
+        onlyOperator(R"({ "type": "peeler", "placement": { "scale": [20, 20, 10] },
+        "cut_face": { "color": [0.8, 0.2, 0.1], "mix": 0.5, "depth": 3 } })");
+    ASSERT_TRUE(op.cutFace);
+    EXPECT_EQ(op.cutFace->color, glm::vec3(0.8f, 0.2f, 0.1f));
+    EXPECT_EQ(op.cutFace->mix, 0.5);
+    EXPECT_EQ(op.cutFace->depth, 3.0);
+    const OperatorSpec defaults = onlyOperator(R"({ "type": "retractor",
+        "placement": { "scale": [20, 20, 10] }, "cut_face": { "color": [1, 1, 1] } })");
+    ASSERT_TRUE(defaults.cutFace);
+    EXPECT_EQ(defaults.cutFace->mix, 1.0);
+    EXPECT_EQ(defaults.cutFace->depth, 1.0);
+    EXPECT_FALSE(
+        onlyOperator(R"({ "type": "peeler", "placement": { "scale": [9, 9, 9] } })").cutFace);
+    // Pliers and dilators cut nothing: refused, naming why.
+    for (const char* type : {"pliers", "dilator"})
+        EXPECT_NE(parseError(patched(std::string(R"({"operators": [{ "type": ")") + type +
+                                     R"(", "placement": { "scale": [9, 9, 9] },
+            "cut_face": { "color": [1, 0, 0] } }]})"))
+                      .find(std::string("/operators/0/cut_face: ") + type + " cut nothing"),
+                  std::string::npos)
+            << type;
+    const std::pair<const char*, const char*> bad[] = {
+        {R"({ "mix": 0.5 })", "/operators/0/cut_face/color"},
+        {R"({ "color": [1, 0, 0], "mix": 1.01 })", "/operators/0/cut_face/mix"},
+        {R"({ "color": [1, 0, 0], "depth": 0 })", "/operators/0/cut_face/depth"},
+        {R"({ "color": [1, 0, 0], "colour": [1, 0, 0] })", "/operators/0/cut_face/colour"},
+        {R"("red")", "/operators/0/cut_face"}};
+    for (const auto& [face, pointer] : bad)
+        EXPECT_NE(parseError(patched(std::string(R"({"operators": [{ "type": "peeler",
+            "placement": { "scale": [9, 9, 9] }, "cut_face": )") +
+                                     face + "}]}"))
+                      .find(pointer),
+                  std::string::npos)
+            << face;
+}
+
 } // namespace cutaway::test

@@ -206,6 +206,8 @@ const std::map<std::string, std::string> kBadScenes = {
     {"52-size-zero.json", ": /volume/size/1: expected an integer in [8, 1024], got 0"},
     {"53-nan-literal.json", ":4:22: JSON syntax error: while parsing value - invalid literal"},
     {"54-filter-unknown.json", ": /render/filter: expected one of \"linear\", \"cubic\""},
+    {"55-cut-face-on-pliers.json",
+     ": /operators/0/cut_face: pliers cut nothing: only \"peeler\" and \"retractor\" take it"},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {
