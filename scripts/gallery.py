@@ -137,6 +137,25 @@ def main():
           f"previews in docs/gallery/, index in docs/gallery.md")
 
 
+# A close-up that is not a scene of its own: a cut face before and after
+# /operators/N/cut_face (its pictures are made by the command it shows).
+CUT_FACE = r"""## A cut face, before and after `cut_face`
+
+![Figure 3(a)'s flap, close up, cut faces in the data's colour](gallery/cut_face_before.png)
+![The same, cut faces capped in red](gallery/cut_face_after.png)
+
+Figure 3(a)'s flap close up: on the left the cut faces in the data's own colours, on the right
+with `/operators/0/cut_face` (`{"color": [0.78, 0.2, 0.16], "mix": 0.85, "depth": 2}`), the flat
+colour illustrators give a cross-section ([operators.md](operators.md#cut-faces)). 256 x 256:
+
+```sh
+build/cutaway render scenes/fig3_axis_ct_head.json --set /camera/fov=12 \
+  --set '/camera/orbit/target=[0,10,95]' --set '/render/size=[256,256]' --png \
+  --set '/operators/0/cut_face={"color":[0.78,0.2,0.16],"mix":0.85,"depth":2}'
+```
+"""
+
+
 def write_markdown(results):
     path = os.path.join(ROOT, "docs", "gallery.md")
     old = {}
@@ -160,6 +179,7 @@ def write_markdown(results):
                   f"- scene: [`scenes/{name}.json`](../scenes/{name}.json)",
                   f"- command: `build/cutaway render scenes/{name}.json --png`",
                   f"- render time: {time_text}", f"<!-- time {name} {time_text} -->", ""]
+    lines += CUT_FACE.split("\n")
     open(path, "w").write("\n".join(lines))
 
 
