@@ -132,8 +132,8 @@ enum class RenderMethod { Slicing, Raycast };
 ///   "linear": trilinear (default)
 ///   "cubic":  tricubic Catmull-Rom over the 4^3 voxels around a sample:
 ///             through the voxels' values, smooth (C1) where trilinear leaves
-///             a terrace at every slice of a thick-slice scan; about 3x the
-///             cost of a frame on a CPU device
+///             a terrace at every slice of a thick-slice scan; 1.2-1.7x a
+///             whole render on lavapipe (docs/quality.md)
 enum class Filter { Linear, Cubic };
 
 /// /render

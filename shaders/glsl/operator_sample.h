@@ -114,17 +114,16 @@ float featureVoxel(sampler3D feature, int slot, int mode, ivec3 voxel) {
 // values are (so the field ranges' skipping holds).
 vec2 featureCubic(sampler3D feature, int slot, int mode, vec3 at) {
     bool loaded = featureLoaded(mode);
-    ivec3 dims = loaded ? featureImageSize(slot) : textureSize(feature, 0);
-    CubicCell c = cubicCell(at, dims);
+    CubicCell c = cubicCell(at, loaded ? featureImageSize(slot) : textureSize(feature, 0));
     vec2 sum = vec2(0.0), lo = vec2(1e30), hi = vec2(-1e30);
     for (int z = 0; z < 4; ++z)
         for (int y = 0; y < 4; ++y) {
             vec2 row = vec2(0.0);
             for (int x = 0; x < 4; ++x) {
-                ivec3 p = clamp(c.first + ivec3(x, y, z), ivec3(0), dims - 1);
+                ivec3 p = ivec3(c.ix[x], c.iy[y], c.iz[z]);
                 vec2 v = loaded ? vec2(featureTexel(slot, p), 0.0) : texelFetch(feature, p, 0).rg;
                 row += c.wx[x] * v;
-                if ((x == 1 || x == 2) && (y == 1 || y == 2) && (z == 1 || z == 2)) {
+                if (inCubicCell(x, y, z)) {
                     lo = min(lo, v);
                     hi = max(hi, v);
                 }

@@ -195,16 +195,15 @@ vec4 gradientVoxel(ivec3 p) {
 // to the range of the eight of its cell.
 float volumeAt(vec3 tc) {
     if (!cwCubic) return volumeLinearAt(tc);
-    ivec3 dims = textureSize(volumeTex, 0);
-    CubicCell c = cubicCell(tc, dims);
+    CubicCell c = cubicCell(tc, textureSize(volumeTex, 0));
     float sum = 0.0, lo = 1.0, hi = 0.0;
     for (int z = 0; z < 4; ++z)
         for (int y = 0; y < 4; ++y) {
             float row = 0.0;
             for (int x = 0; x < 4; ++x) {
-                float v = valueVoxel(clamp(c.first + ivec3(x, y, z), ivec3(0), dims - 1));
+                float v = valueVoxel(ivec3(c.ix[x], c.iy[y], c.iz[z]));
                 row += c.wx[x] * v;
-                if ((x == 1 || x == 2) && (y == 1 || y == 2) && (z == 1 || z == 2)) {
+                if (inCubicCell(x, y, z)) {
                     lo = min(lo, v);
                     hi = max(hi, v);
                 }
@@ -218,14 +217,13 @@ float volumeAt(vec3 tc) {
 // the values (not held to a range: a direction and a magnitude).
 vec4 gradientAt(vec3 tc) {
     if (!cwCubic) return gradientLinearAt(tc);
-    ivec3 dims = textureSize(volumeTex, 0); // the grid, not the bricks
-    CubicCell c = cubicCell(tc, dims);
+    CubicCell c = cubicCell(tc, textureSize(volumeTex, 0)); // the grid, not the bricks
     vec4 sum = vec4(0.0);
     for (int z = 0; z < 4; ++z)
         for (int y = 0; y < 4; ++y) {
             vec4 row = vec4(0.0);
             for (int x = 0; x < 4; ++x)
-                row += c.wx[x] * gradientVoxel(clamp(c.first + ivec3(x, y, z), ivec3(0), dims - 1));
+                row += c.wx[x] * gradientVoxel(ivec3(c.ix[x], c.iy[y], c.iz[z]));
             sum += (c.wz[z] * c.wy[y]) * row;
         }
     return sum;

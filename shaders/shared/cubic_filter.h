@@ -34,25 +34,40 @@ CW_FUNC vec4 catmullRomWeights(float t) {
 }
 
 // Where a sample at texture coordinate tc of a grid of `dims` texels reads:
-// the first of its 4^3 texels (`first`, before clamping to the grid) and
-// each axis's four weights.
+// along each axis the indices of its four texels, clamped to the grid as a
+// sampler clamps to the edge, and their four weights.
 struct CubicCell {
-    ivec3 first;
+    ivec4 ix;
+    ivec4 iy;
+    ivec4 iz;
     vec4 wx;
     vec4 wy;
     vec4 wz;
 };
 
+CW_FUNC ivec4 cubicIndices(int first, int size) {
+    return clamp(ivec4(first) + ivec4(0, 1, 2, 3), ivec4(0), ivec4(size - 1));
+}
+
 CW_FUNC CubicCell cubicCell(vec3 tc, ivec3 dims) {
     vec3 x = tc * vec3(dims) - 0.5f;
     vec3 i = floor(x);
     vec3 t = x - i;
+    ivec3 first = ivec3(i) - 1;
     CubicCell c;
-    c.first = ivec3(i) - 1;
+    c.ix = cubicIndices(first.x, dims.x);
+    c.iy = cubicIndices(first.y, dims.y);
+    c.iz = cubicIndices(first.z, dims.z);
     c.wx = catmullRomWeights(t.x);
     c.wy = catmullRomWeights(t.y);
     c.wz = catmullRomWeights(t.z);
     return c;
+}
+
+// Whether texel (x, y, z) of the 4^3 (0..3 each) is one of the eight of the
+// sample's cell, whose range the values are held to.
+CW_FUNC bool inCubicCell(int x, int y, int z) {
+    return (x == 1 || x == 2) && (y == 1 || y == 2) && (z == 1 || z == 2);
 }
 
 CW_NAMESPACE_END

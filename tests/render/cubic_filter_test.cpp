@@ -60,9 +60,9 @@ float cubicAt(const Grid& g, vec3 tc) {
     for (int z = 0; z < 4; ++z)
         for (int y = 0; y < 4; ++y)
             for (int x = 0; x < 4; ++x) {
-                const float v = g.at(c.first + ivec3(x, y, z));
+                const float v = g.at(ivec3(c.ix[x], c.iy[y], c.iz[z]));
                 sum += c.wx[x] * c.wy[y] * c.wz[z] * v;
-                if ((x == 1 || x == 2) && (y == 1 || y == 2) && (z == 1 || z == 2)) {
+                if (shader::inCubicCell(x, y, z)) {
                     lo = std::min(lo, v);
                     hi = std::max(hi, v);
                 }
