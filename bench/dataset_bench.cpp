@@ -21,8 +21,11 @@ namespace cutaway::bench {
 
 std::vector<SceneSetting> rowSettings(const DatasetEntry& entry, const std::string& alignment,
                                       double spacing, const BenchOptions& o) {
+    // Whole slabs (refine 1): a row's samples are then the slicing planes'
+    // crossings, the paper's work and the work VTK's ray caster is given.
     std::vector<SceneSetting> settings{
         {"/render/slice_spacing", spacing},
+        {"/render/refine", 1},
         {"/render/size", nlohmann::json::array({o.width, o.height})},
         {"/render/shading/enabled", true},
     };

@@ -6,7 +6,7 @@
 
 namespace cutaway::render {
 
-static_assert(CW_SPEC_COUNT == 13, "ShaderConstants::kCount");
+static_assert(CW_SPEC_COUNT == 14, "ShaderConstants::kCount");
 
 ShaderConstants::ShaderConstants(const ShaderVariant& v, std::initializer_list<uint32_t> more)
     : m_values{} {
@@ -26,6 +26,7 @@ ShaderConstants::ShaderConstants(const ShaderVariant& v, std::initializer_list<u
     m_values[CW_SPEC_BRICKED_GRADIENTS] = v.brickedGradients;
     m_values[CW_SPEC_WHOLE_SHININESS] = static_cast<uint32_t>(v.wholeShininess);
     m_values[CW_SPEC_CUBIC] = v.cubic;
+    m_values[CW_SPEC_REFINE] = static_cast<uint32_t>(v.refine);
     for (uint32_t i = 0; i < kCount; ++i)
         m_entries[i] = {i, i * 4u, 4u};
     m_info = {kCount, m_entries, kCount * 4u, m_values};

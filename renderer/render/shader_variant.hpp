@@ -37,6 +37,9 @@ struct ShaderVariant {
     /// the tricubic Catmull-Rom filter (shared/cubic_filter.h) instead of
     /// trilinearly.
     bool cubic = false;
+    /// /render/refine: the sub-slabs a pre-integrated slab that shows is
+    /// taken in (sample_common.h's backgroundSlab); 1 none.
+    int refine = 1;
     /// The ray caster's lanes that step over transparent samples stop for a
     /// pass of shading as soon as one lane waits (ray_march.h's
     /// CW_YIELD_LANES, the "lanes" flavour). Slicing ignores it.
@@ -60,7 +63,7 @@ public:
     const VkSpecializationInfo* info() const { return &m_info; }
 
 private:
-    static constexpr uint32_t kCount = 13; ///< CW_SPEC_COUNT
+    static constexpr uint32_t kCount = 14; ///< CW_SPEC_COUNT
     uint32_t m_values[kCount];
     VkSpecializationMapEntry m_entries[kCount];
     VkSpecializationInfo m_info;

@@ -64,6 +64,7 @@ ShaderVariant VolumeRenderer::variantFor(const Scene& scene, const GpuVolume& vo
     v.brickedGradients = volume.gradientLayout == bake::GradientLayout::Bricked;
     v.wholeShininess = wholeShininess(scene.render.shading);
     v.cubic = scene.render.filter == Filter::Cubic;
+    v.refine = v.preintegrated ? scene.render.refine : 1;
     v.yieldLanes = m_tuning.yieldLanes;
     v.census = m_census;
     return v;

@@ -143,6 +143,10 @@ enum class Filter { Linear, Cubic };
 /// at the same opacity). 1 takes every sample that can show.
 inline constexpr double kDefaultTerminationOpacity = 1.0 - 1.0 / 255.0;
 
+/// /render/refine's default, and under /render/quality "draft".
+inline constexpr int kDefaultRefine = 4;
+inline constexpr int kDraftRefine = 1;
+
 struct RenderSettings {
     int width = 512;           ///< /render/size[0], [1, 16384]
     int height = 512;          ///< /render/size[1]
@@ -164,6 +168,9 @@ struct RenderSettings {
     /// frame number (Scene::frame).
     std::optional<int> seed;
     Filter filter = Filter::Linear;
+    /// /render/refine, [1, 8]: the sub-slabs a pre-integrated slab that
+    /// shows is taken in; 1 none. /render/quality "draft" makes 1 the default.
+    int refine = kDefaultRefine;
 };
 
 enum class PixelType { Half, Float };

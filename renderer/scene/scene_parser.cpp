@@ -48,6 +48,11 @@ namespace scene_detail {
 ///                   varies the offsets from frame to frame
 ///  * filter         "linear" or "cubic", default "linear": how values and
 ///                   gradients are reconstructed between voxels (see Filter)
+///  * refine         integer, in [1, 8], default 4 (1 under quality "draft"): the
+///                   sub-slabs each pre-integrated slab that shows is taken in,
+///                   resolved, classified and lit on its own
+///  * quality        "final" or "draft", default "final": draft takes each slab
+///                   whole (refine 1), for speed while a scene is being made
 ///  * shading        object, default {}: Blinn-Phong material of every sample
 ///    * enabled      boolean, default true: false shows the transfer function's colours unlit
 ///    * diffuse      number, in [0, 1], default 0.8
@@ -98,6 +103,12 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
                                   {"linear", "cubic"}) == "cubic"
                         ? Filter::Cubic
                         : Filter::Linear;
+    // The quality only sets refine's default: a refine given wins.
+    if (reader.find("quality"))
+        render.refine = reader.string("quality", "final", {"final", "draft"}) == "draft"
+                            ? kDraftRefine
+                            : kDefaultRefine;
+    render.refine = int(reader.integer("refine", render.refine, 1, 8));
 
     reader.object("shading", [&](JsonReader& shading) {
         Shading& s = render.shading;

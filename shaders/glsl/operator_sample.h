@@ -374,24 +374,26 @@ vec4 mapDerivative(OperatorUniforms op, sampler3D derivatives, vec3 q, int axis)
     return textureLod(derivatives, tc, 0.0);
 }
 
-// The slab's premultiplied, shaded colour; `world` is p' (the slab's front),
-// seen from `viewer` (viewerOf), `stepMm` the slab's length along the ray
-// toward -viewer.toEye. `moved`: whether the colour came from a point that
-// moved with the operator (not the feature left in place).
-vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D feature, int slot,
-                       int mode, Slab s, vec3 world, Viewer viewer, float obliquity, float stepMm,
-                       out bool moved) {
-    moved = false;
+// The slab's premultiplied colour before lighting (Slab s, `obliquity` as
+// classifySlab takes it), with the cut face's colour mixed in; 0 when nothing
+// shows.
+vec4 operatorSlabColor(OperatorUniforms op, Slab s, float obliquity) {
     if (s.empty) return vec4(0.0);
     bool masked = s.middle.which == CW_CASE_MASKED;
-    moved = !masked;
-    float layer = classLayer(s.middle.tc);
-    vec3 shadePoint = world - viewer.toEye * (s.shadeAt * stepMm);
-    vec4 c = classifySlab(s.frontValue, s.backValue, obliquity * s.kept, layer);
+    vec4 c = classifySlab(s.frontValue, s.backValue, obliquity * s.kept, classLayer(s.middle.tc));
     if (c.a <= 0.0) return vec4(0.0);
     if (op.cutFace.w > 0.0 && !masked) // premultiplied: the face's colour times the opacity
         c.rgb = mix(c.rgb, op.cutFace.rgb * c.a, op.cutFace.w * cutFaceShare(op, s.wNear, s.wFar));
+    return c;
+}
 
+// The slab's colour `c` (operatorSlabColor) lit; `world` is p' (the slab's
+// front), seen from `viewer` (viewerOf), `stepMm` the slab's length along
+// the ray toward -viewer.toEye.
+vec4 lightOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D feature, int slot,
+                       int mode, Slab s, vec4 c, vec3 world, Viewer viewer, float stepMm) {
+    bool masked = s.middle.which == CW_CASE_MASKED;
+    vec3 shadePoint = world - viewer.toEye * (s.shadeAt * stepMm);
     // One gradient fetch and one feature gradient for both cases below: on
     // SIMD CPUs both sides of a branch run, so a call in each would cost twice.
     vec4 g = featureGradient(op, feature, slot, mode, gradientAt(s.middle.tc), s.middle.feature,
@@ -428,6 +430,48 @@ vec4 shadeOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D fea
         }
     }
     return shade(c, n, viewer);
+}
+
+// The premultiplied, shaded colour of the slab from p' = `world` (resolved
+// `front`) to world + step (`back`; post-classified frames pass the front
+// again), seen from `viewer`; `stepMm` is the length of `step`. A slab that
+// shows (refines) is taken in cwRefine sub-slabs, each resolved at its ends,
+// cut, classified and lit on its own and composited front to back: a slab
+// across a cut, a flap's stretched material or the face the feature left
+// is where one slab's approximations show most. `moved`: whether the colour
+// came from a point that moved with the operator (not the feature left in
+// place): the first sub-slab's that brings the slab to CW_ID_MIN_ALPHA.
+vec4 refinedOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D derivatives,
+                         sampler3D feature, int slot, int mode, Resolved front, Resolved back,
+                         vec3 world, vec3 step, Viewer viewer, float obliquity, float stepMm,
+                         out bool moved) {
+    Slab s = operatorSlab(mode, front, back);
+    vec4 c = operatorSlabColor(op, s, obliquity);
+    moved = !s.empty && s.middle.which != CW_CASE_MASKED;
+    if (c.a <= 0.0) return vec4(0.0);
+    if (!refines())
+        return lightOperatorSlab(op, derivatives, feature, slot, mode, s, c, world, viewer, stepMm);
+    float n = float(cwRefine);
+    vec4 sum = vec4(0.0);
+    Resolved a = front;
+    bool named = false;
+    for (int j = 1; j <= cwRefine; ++j) {
+        vec3 at = world + step * (float(j - 1) / n);
+        Resolved b = j == cwRefine
+                         ? back
+                         : resolve(op, map, feature, slot, mode, world + step * (float(j) / n));
+        Slab part = operatorSlab(mode, a, b);
+        vec4 pc = operatorSlabColor(op, part, obliquity / n);
+        if (pc.a > 0.0)
+            sum += (1.0 - sum.a) * lightOperatorSlab(op, derivatives, feature, slot, mode, part, pc,
+                                                     at, viewer, stepMm / n);
+        if (!named && sum.a >= CW_ID_MIN_ALPHA) {
+            moved = part.middle.which != CW_CASE_MASKED;
+            named = true;
+        }
+        a = b;
+    }
+    return sum;
 }
 
 #endif

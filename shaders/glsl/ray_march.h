@@ -233,9 +233,9 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         if (k > k1) break;
         if (!visible) continue;
         if (cwCensus) census.y += 1.0;
-        vec4 c = classifySlab(front, cwPreintegrated ? next : front, m.obliquity, classLayer(tc));
-        vec3 shadeAt = cwPreintegrated ? tc + 0.5 * tcStep : tc;
-        c = shade(c, gradientAt(shadeAt), m.viewer);
+        float back = cwPreintegrated ? next : front;
+        vec4 c = classifySlab(front, back, m.obliquity, classLayer(tc));
+        if (c.a > 0.0) c = backgroundSlab(c, front, back, tc, tcStep, m.viewer, m.obliquity);
         composite(c, CW_ID_BACKGROUND, sum, id);
         if (sum.a >= u.termination.x) break;
         tc += tcStep;
@@ -329,8 +329,10 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
         if (!visible) continue;
         bool moved;
         if (cwCensus) census.w += 1.0;
-        vec4 c = shadeOperatorSlab(op, derivatives, feature, slot, mode, s, pointAt(m, k), m.viewer,
-                                   m.obliquity, stepMm, moved);
+        vec3 at = pointAt(m, k);
+        vec4 c = refinedOperatorSlab(op, map, derivatives, feature, slot, mode, front,
+                                     cwPreintegrated ? next : front, at, pointAt(m, k + 1.0) - at,
+                                     m.viewer, m.obliquity, stepMm, moved);
         composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
         if (sum.a >= u.termination.x) break;
         front = next;

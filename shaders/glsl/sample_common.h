@@ -36,6 +36,9 @@ const bool cwBrickedGradients = false;
 // tricubic Catmull-Rom filter (shared/cubic_filter.h) for the values and the
 // gradients.
 layout(constant_id = CW_SPEC_CUBIC) const bool cwCubic = false;
+// /render/refine: the sub-slabs a pre-integrated slab that shows is taken in
+// (backgroundSlab, refinedOperatorSlab); 1 none.
+layout(constant_id = CW_SPEC_REFINE) const int cwRefine = 1;
 // The shininess when it is a whole number (scene range: up to 512), else 0.
 layout(constant_id = CW_SPEC_WHOLE_SHININESS) const int cwWholeShininess = 0;
 #define CW_SHADING_ON(u) cwShading
@@ -268,14 +271,41 @@ vec4 shade(vec4 sampleColor, vec4 gradient, Viewer viewer) {
     return vec4(sampleColor.rgb * light.diffuse + light.specular * sampleColor.a, sampleColor.a);
 }
 
-// The untouched volume's premultiplied, shaded colour for the slab from value
-// `front` to value `back` (the same when post-classified), lit with the
-// gradient at texture coordinate `shadeAt`; `tc` is the front's (its label
-// picks the table). Slicing and ray casting both call this.
-vec4 backgroundSlab(float front, float back, vec3 tc, vec3 shadeAt, vec3 toEye, float obliquity) {
-    vec4 c = classifySlab(front, back, obliquity, classLayer(tc));
-    if (c.a <= 0.0) return vec4(0.0);
-    return shade(c, gradientAt(shadeAt), viewerOf(toEye, u));
+// Whether a pre-integrated slab that shows is taken in cwRefine sub-slabs.
+// Each slab's own approximations (the value taken as linear across it, the
+// light taken at one point of it, a cut or a face clipped linearly) are most
+// of what keeps a picture of one slab per voxel from converging; sub-slabs
+// only where something shows cost a fraction of finer slicing
+// (docs/quality.md).
+bool refines() {
+    return cwPreintegrated && cwRefine > 1;
+}
+
+// The untouched volume's premultiplied, shaded colour for the slab from
+// texture coordinate `tc` (value `front`) to tc + tcStep (value `back`; the
+// same when post-classified), seen from `viewer`, given its classification
+// `coarse` = classifySlab(front, back, obliquity, classLayer(tc)) when that
+// shows (a > 0; callers skip the rest). A pre-integrated slab (refines) is
+// taken in cwRefine sub-slabs, each classified between values fetched at its
+// ends, lit at its middle and composited front to back; else it is lit
+// once, at its middle (post-classified: at its sample). Slicing and ray
+// casting both call this.
+vec4 backgroundSlab(vec4 coarse, float front, float back, vec3 tc, vec3 tcStep, Viewer viewer,
+                    float obliquity) {
+    if (!refines())
+        return shade(coarse, gradientAt(cwPreintegrated ? tc + 0.5 * tcStep : tc), viewer);
+    float n = float(cwRefine);
+    vec4 sum = vec4(0.0);
+    float a = front;
+    for (int j = 1; j <= cwRefine; ++j) {
+        vec3 at = tc + tcStep * (float(j - 1) / n);
+        float b = j == cwRefine ? back : volumeAt(tc + tcStep * (float(j) / n));
+        vec4 part = classifySlab(a, b, obliquity / n, classLayer(at));
+        if (part.a > 0.0)
+            sum += (1.0 - sum.a) * shade(part, gradientAt(at + tcStep * (0.5 / n)), viewer);
+        a = b;
+    }
+    return sum;
 }
 
 #endif

@@ -13,10 +13,13 @@ void main() {
     vec3 tc = toTexture(at);
     float front = volumeAt(tc);
     float back = front;
-    vec3 shadeAt = tc; // the slab's middle when pre-integrated
+    vec3 tcStep = vec3(0.0); // to the slab's back, when pre-integrated
     if (cwPreintegrated) {
-        back = volumeAt(toTexture(at - toEye * stepMm));
-        shadeAt = toTexture(at - toEye * (0.5 * stepMm));
+        tcStep = toTexture(at - toEye * stepMm) - tc;
+        back = volumeAt(tc + tcStep);
     }
-    emit(backgroundSlab(front, back, tc, shadeAt, toEye, obliquity), CW_ID_BACKGROUND);
+    vec4 c = classifySlab(front, back, obliquity, classLayer(tc));
+    if (c.a > 0.0) // the lights' half vectors only where something shows
+        c = backgroundSlab(c, front, back, tc, tcStep, viewerOf(toEye, u), obliquity);
+    emit(c, CW_ID_BACKGROUND);
 }

@@ -20,13 +20,13 @@ void main() {
     float stepMm = u.viewDir.w * obliquity;
     // The pixel's samples lie this far behind the plane (shared/sampling.h).
     vec3 at = worldPos - toEye * (sampleOffset(gl_FragCoord.xy, u.sampling) * stepMm);
+    vec3 step = -toEye * stepMm; // to the slab's back, at the next plane
     Resolved front = resolve(op, operatorMap, featureTex, 0, cwAlignment, at);
     Resolved back = front; // post-classified slices have no back
-    if (cwPreintegrated)
-        back = resolve(op, operatorMap, featureTex, 0, cwAlignment, at - toEye * stepMm);
+    if (cwPreintegrated) back = resolve(op, operatorMap, featureTex, 0, cwAlignment, at + step);
     bool moved;
-    vec4 c = shadeOperatorSlab(op, operatorDerivatives, featureTex, 0, cwAlignment,
-                               operatorSlab(cwAlignment, front, back), at, viewerOf(toEye, u),
-                               obliquity, stepMm, moved);
+    vec4 c =
+        refinedOperatorSlab(op, operatorMap, operatorDerivatives, featureTex, 0, cwAlignment, front,
+                            back, at, step, viewerOf(toEye, u), obliquity, stepMm, moved);
     emit(c, moved ? op.band.y : CW_ID_BACKGROUND);
 }

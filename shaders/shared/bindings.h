@@ -48,8 +48,9 @@
 #define CW_SPEC_CENSUS 9
 #define CW_SPEC_BRICKED_GRADIENTS 10
 #define CW_SPEC_WHOLE_SHININESS 11
-#define CW_SPEC_CUBIC 12 // /render/filter "cubic"
-#define CW_SPEC_COUNT 13
+#define CW_SPEC_CUBIC 12  // /render/filter "cubic"
+#define CW_SPEC_REFINE 13 // /render/refine
+#define CW_SPEC_COUNT 14
 
 #ifdef __cplusplus
 #include "shared/operator_frame.h"

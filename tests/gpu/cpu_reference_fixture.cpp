@@ -64,6 +64,69 @@ glm::vec4 lookup2D(const std::vector<glm::vec4>& table, int n, glm::vec2 uv) {
                     glm::mix(t(i.x, i.y + 1), t(i.x + 1, i.y + 1), f.x), f.y);
 }
 
+// What every slab of a reference render reads.
+struct SlabContext {
+    const CpuVolume& cv;
+    glm::dvec3 half; // the volume's box is [-half, half]
+    bool preintegrated;
+    int refine; // /render/refine's sub-slabs, 1 when post-classified
+    const std::vector<glm::vec4>& table1D;
+    const std::vector<glm::vec4>& table2D;
+    double stepRatio; // post-classification's opacity correction: mm per reference step
+    const shader::FrameUniforms& u;
+
+    glm::dvec3 tcOf(glm::dvec3 q) const { return (q + half) / (2.0 * half); }
+    float value(glm::dvec3 q) const { return cv.trilinear(cv.values, tcOf(q)); }
+
+    // The premultiplied colour of a slab from value `front` to `back`,
+    // `ratio` times the table's opacity correction long.
+    glm::vec4 classify(float front, float back, float ratio) const {
+        if (!preintegrated) {
+            const float n = float(render::kTransferTableSize);
+            const glm::vec4 c = lookup1D(table1D, front * (n - 1) / n + 0.5f / n);
+            if (c.w <= 0.0f) return glm::vec4(0.0f);
+            const float alpha = shader::correctOpacity(c.w, float(stepRatio) * ratio);
+            return glm::vec4(glm::vec3(c) * alpha, alpha);
+        }
+        const int n = render::kPreintegrationSize;
+        const float s = (n - 1.0f) / n, o = 0.5f / n;
+        const glm::vec4 slab = lookup2D(table2D, n, glm::vec2(front, back) * s + o);
+        if (slab.w <= 0.0f) return glm::vec4(0.0f);
+        const float alpha = shader::correctOpacity(slab.w, ratio);
+        return glm::vec4(glm::vec3(slab) * (alpha / slab.w), alpha);
+    }
+
+    glm::dvec4 shade(glm::vec4 c, glm::dvec3 at, const shader::Viewer& viewer) const {
+        const shader::Lighting light =
+            shader::lightSample(cv.trilinear(cv.gradients, tcOf(at)), viewer, u);
+        return glm::dvec4(glm::vec3(c) * light.diffuse + light.specular * c.w, c.w);
+    }
+};
+
+// The shaded slab from world point p to p + step, as the shaders' backgroundSlab
+// takes it: classified whole, and when something shows and it is
+// pre-integrated, again in `refine` sub-slabs, each lit at its middle and
+// composited front to back.
+glm::dvec4 slabColor(const SlabContext& ctx, glm::dvec3 p, glm::dvec3 step,
+                     const shader::Viewer& viewer, float obliquity) {
+    const float front = ctx.value(p);
+    const float back = ctx.preintegrated ? ctx.value(p + step) : front;
+    const glm::vec4 c = ctx.classify(front, back, obliquity);
+    if (c.w <= 0.0f) return glm::dvec4(0.0);
+    if (!ctx.preintegrated) return ctx.shade(c, p, viewer);
+    const int n = ctx.refine;
+    glm::dvec4 sum(0.0);
+    float a = front;
+    for (int j = 1; j <= n; ++j) {
+        const float b = j == n ? back : ctx.value(p + step * (double(j) / n));
+        const glm::vec4 part = n == 1 ? c : ctx.classify(a, b, obliquity / float(n));
+        if (part.w > 0.0f)
+            sum += (1.0 - sum.w) * ctx.shade(part, p + step * ((j - 0.5) / n), viewer);
+        a = b;
+    }
+    return sum;
+}
+
 } // namespace
 
 std::vector<glm::vec4> cpuGradients(const Volume& volume, bake::ValueWindow window) {
@@ -138,6 +201,9 @@ Image renderCpuReference(const Scene& scene, const Volume& volume) {
     }
     if (cam.perspective) sMin = std::max(sMin, glm::dot(f, cam.eye) + cam.nearPlane);
 
+    const int refine = preintegrated ? scene.render.refine : 1;
+    const SlabContext ctx{cv,      half,    preintegrated,        refine,
+                          table1D, table2D, sliceMm / minSpacing, u};
     Image img(w, h);
     for (int py = 0; py < h; ++py)
         for (int px = 0; px < w; ++px) {
@@ -152,38 +218,14 @@ Image renderCpuReference(const Scene& scene, const Volume& volume) {
                 const glm::dvec3 p = origin + t * dir;
                 if (glm::any(glm::lessThan(p, -half)) || glm::any(glm::greaterThan(p, half)))
                     continue;
-                auto tcOf = [&](glm::dvec3 q) { return (q + half) / (2.0 * half); };
                 const glm::vec3 toEye =
                     cam.perspective ? glm::vec3(glm::normalize(cam.eye - p)) : -glm::vec3(f);
                 const float obliquity = 1.0f / std::max(glm::dot(-toEye, glm::vec3(f)), 1e-3f);
                 const shader::Viewer viewer = shader::viewerOf(toEye, u);
                 const double stepMm = sliceMm * obliquity;
-                const float front = cv.trilinear(cv.values, tcOf(p));
-                glm::dvec3 shadeAt = tcOf(p);
-                glm::vec4 sampleColor;
-                if (preintegrated) {
-                    const glm::dvec3 backP = p - glm::dvec3(toEye) * stepMm;
-                    shadeAt = tcOf(p - glm::dvec3(toEye) * (0.5 * stepMm));
-                    const float back = cv.trilinear(cv.values, tcOf(backP));
-                    const int n = render::kPreintegrationSize;
-                    const float s = (n - 1.0f) / n, o = 0.5f / n;
-                    const glm::vec4 slab = lookup2D(table2D, n, glm::vec2(front, back) * s + o);
-                    if (slab.w <= 0.0f) continue;
-                    const float alpha = shader::correctOpacity(slab.w, obliquity);
-                    sampleColor = glm::vec4(glm::vec3(slab) * (alpha / slab.w), alpha);
-                } else {
-                    const float n = float(render::kTransferTableSize);
-                    const glm::vec4 c = lookup1D(table1D, front * (n - 1) / n + 0.5f / n);
-                    if (c.w <= 0.0f) continue;
-                    const float alpha = shader::correctOpacity(c.w, float(stepMm / minSpacing));
-                    sampleColor = glm::vec4(glm::vec3(c) * alpha, alpha);
-                }
-                const shader::Lighting light =
-                    shader::lightSample(cv.trilinear(cv.gradients, shadeAt), viewer, u);
-                const glm::vec4 shaded(glm::vec3(sampleColor) * light.diffuse +
-                                           light.specular * sampleColor.w,
-                                       sampleColor.w);
-                acc += (1.0 - acc.w) * glm::dvec4(shaded);
+                const glm::dvec4 shaded =
+                    slabColor(ctx, p, glm::dvec3(toEye) * -stepMm, viewer, obliquity);
+                acc += (1.0 - acc.w) * shaded;
             }
             const glm::vec4 bg = scene.render.background;
             const glm::dvec4 bgp(glm::dvec3(bg) * double(bg.w), bg.w);

@@ -23,7 +23,8 @@ using nlohmann::json;
 
 // The head phantom's skin and skull as near-surfaces, lit, seen from close
 // by (a voxel is about three pixels wide), slices a voxel apart: rings
-// several pixels wide.
+// several pixels wide. Slabs are taken whole (refine 1): sub-slabs
+// (tests/gpu/refine_test.cpp) take most of the rings away themselves.
 json ringScene() {
     return {
         {"version", 1},
@@ -37,7 +38,11 @@ json ringScene() {
          {{"ambient", 0.2},
           {"headlight", 0.5},
           {"directional", {{{"direction", {-1, 1, -1}}, {"intensity", 0.6}}}}}},
-        {"render", {{"size", {128, 128}}, {"slice_spacing", 1.0}, {"termination_opacity", 1.0}}},
+        {"render",
+         {{"size", {128, 128}},
+          {"slice_spacing", 1.0},
+          {"termination_opacity", 1.0},
+          {"refine", 1}}},
     };
 }
 

@@ -208,6 +208,7 @@ const std::map<std::string, std::string> kBadScenes = {
     {"54-filter-unknown.json", ": /render/filter: expected one of \"linear\", \"cubic\""},
     {"55-cut-face-on-pliers.json",
      ": /operators/0/cut_face: pliers cut nothing: only \"peeler\" and \"retractor\" take it"},
+    {"56-refine-out-of-range.json", ": /render/refine: expected an integer in [1, 8], got 16"},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {

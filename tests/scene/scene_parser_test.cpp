@@ -72,6 +72,7 @@ TEST(SceneParser, FillsDefaults) {
     EXPECT_EQ(scene.render.height, 512);
     EXPECT_EQ(scene.render.sliceSpacing, 1.0);
     EXPECT_EQ(scene.render.terminationOpacity, 1.0 - 1.0 / 255.0);
+    EXPECT_EQ(scene.render.refine, 4);
     EXPECT_EQ(scene.render.background, glm::vec4(0, 0, 0, 1));
     EXPECT_TRUE(scene.render.shading.enabled);
     EXPECT_EQ(scene.render.shading.diffuse, 0.8f);
@@ -129,6 +130,17 @@ TEST(SceneParser, ReadsEveryKeyIntoItsField) {
     EXPECT_EQ(scene.output.pixelType, PixelType::Float);
     EXPECT_EQ(scene.output.compression, Compression::Piz);
     EXPECT_TRUE(scene.output.png);
+}
+
+TEST(SceneParser, DraftQualitySetsRefinesDefaultOnly) {
+    const auto refineOf = [](const char* render) {
+        return parseScene(patched(std::string(R"({"render": )") + render + "}"), "/scenes")
+            .render.refine;
+    };
+    EXPECT_EQ(refineOf(R"({"quality": "draft"})"), 1);
+    EXPECT_EQ(refineOf(R"({"quality": "final"})"), 4);
+    EXPECT_EQ(refineOf(R"({"quality": "draft", "refine": 3})"), 3);
+    EXPECT_EQ(refineOf(R"({"refine": 2, "quality": "draft"})"), 2);
 }
 
 TEST(SceneParser, ReadsLookAtCamera) {
