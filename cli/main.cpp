@@ -4,7 +4,8 @@
 //                  [--set /json/pointer=VALUE ...] [--png] [--skip-existing] [--fail-fast]
 //                  [--writers N] [--device NAME] [--memory-budget SIZE] [--quiet]
 //   cutaway validate SCENE [--set ...]
-//   cutaway export SCENE [--frame N] -o OUT.nrrd [--labels-output L.nrrd] [--set ...] [--raw]
+//   cutaway export SCENE [--frame N] -o OUT.nrrd [--labels-output L.nrrd] [--set ...]
+//                  [--oversample K] [--raw]
 //   cutaway info FILE
 //   cutaway devices
 //
@@ -169,11 +170,12 @@ struct ExportArgs {
     std::vector<std::string> sets;
     std::string labelsOutput;
     std::string frame;
+    int oversample = 1;
     bool raw = false;
 };
 
 int runExport(const ExportArgs& args) {
-    cutaway::job::ExportRequest request{args.output, std::nullopt, !args.raw};
+    cutaway::job::ExportRequest request{args.output, std::nullopt, !args.raw, args.oversample};
     if (!args.labelsOutput.empty()) request.labelsOutput = args.labelsOutput;
     cutaway::job::checkExportName(request);
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
@@ -187,7 +189,8 @@ int runExport(const ExportArgs& args) {
     cutaway::cli::installEndingHandlers(); // no temporary outlives a signal
     const cutaway::job::Exported exported = [&] {
         try {
-            return cutaway::job::exportVolume(scene, request.labelsOutput.has_value());
+            return cutaway::job::exportVolume(scene, request.labelsOutput.has_value(),
+                                              request.oversample);
         } catch (const cutaway::InputError& e) {
             const std::string what = e.what();
             // A JSON pointer is a place in the scene file: name the file too.
@@ -322,6 +325,11 @@ int main(int argc, char** argv) {
                               "Override a scene value: /json/pointer=VALUE");
     exportCommand->add_option("--labels-output", exportArgs.labelsOutput,
                               "Also write the scene's label volume, deformed alike (.nrrd)");
+    exportCommand
+        ->add_option("--oversample", exportArgs.oversample,
+                     "A grid K times finer along each axis (1-4, default 1): cut faces alias K "
+                     "times less")
+        ->check(CLI::Range(1, cutaway::job::kMostOversample));
     exportCommand->add_flag("--raw", exportArgs.raw, "Raw encoding instead of gzip");
 
     std::string infoFile;

@@ -34,7 +34,7 @@ std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
     return bake::smoothMaskCpu(indicator, volume.dims, volume.spacing, a.band);
 }
 
-Exported exportVolume(const Scene& scene, bool withLabels) {
+Exported exportVolume(const Scene& scene, bool withLabels, int oversample) {
     if (withLabels && !scene.labels) throw InputError("the scene has no /labels to export");
     std::size_t nonFinite = 0;
     auto scan = std::make_shared<Volume>(loadSceneVolume(scene, &nonFinite));
@@ -63,10 +63,11 @@ Exported exportVolume(const Scene& scene, bool withLabels) {
     };
     const auto deform = [&](const operators::PlacedVolume& in, float emptyValue,
                             operators::Sampling sampling) {
-        return resamplesSequentially ? operators::resampleSequentially(
-                                           in, scene.operators, emptyValue, fieldFor, sampling)
-                                     : operators::resampleDeformed(in, scene.operators, emptyValue,
-                                                                   fieldFor, sampling);
+        return resamplesSequentially
+                   ? operators::resampleSequentially(in, scene.operators, emptyValue, fieldFor,
+                                                     sampling, oversample)
+                   : operators::resampleDeformed(in, scene.operators, emptyValue, fieldFor,
+                                                 sampling, oversample);
     };
     if (!resamplesSequentially) operators::checkNoOverlap(scene.operators);
     // The scan moves into place unless it is also the label volume.

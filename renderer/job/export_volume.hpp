@@ -41,14 +41,20 @@ struct Exported {
 /// its label volume (/labels, which the scene must have) through the same
 /// maps, each voxel taking the label nearest to its pre-image: ids are never
 /// blended, and cuts are background (0).
-Exported exportVolume(const Scene& scene, bool withLabels = false);
+/// With `oversample` K > 1 both grids are K times finer along each axis
+/// over the same box (resampleDeformed), so cut faces alias K times less.
+Exported exportVolume(const Scene& scene, bool withLabels = false, int oversample = 1);
 
 /// Where an export goes: the volume's NRRD, and its labels' when asked for.
 struct ExportRequest {
     std::filesystem::path output;
     std::optional<std::filesystem::path> labelsOutput;
     bool compress = true; ///< gzip; false writes raw
+    int oversample = 1;   ///< --oversample, [1, kMostOversample]
 };
+
+/// The finest --oversample: 4^3 = 64 voxels for each of the scan's.
+inline constexpr int kMostOversample = 4;
 
 /// Refuses an output not named .nrrd (InputError naming -o).
 void checkExportName(const ExportRequest& request);

@@ -1,16 +1,19 @@
 #include "operators/deformed_volume.hpp"
 
+#include "core/error.hpp"
 #include "operators/moved_value.hpp"
 #include "operators/operator_geometry.hpp"
 #include "shared/feature.h"
 #include "shared/feature_bake.h"
 #include "shared/operators.h"
+#include "volume/io_util.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <span>
 #include <stdexcept>
+#include <string>
 
 namespace cutaway::operators {
 namespace {
@@ -89,30 +92,38 @@ namespace {
 // resampleDeformed over operators [first, first + count): `fieldFor` sees
 // references into the caller's own list.
 PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
-                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling);
+                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling,
+                      int oversample);
 
 } // namespace
 
 PlacedVolume resampleSequentially(const PlacedVolume& in,
                                   const std::vector<OperatorSpec>& operators, float emptyValue,
-                                  const FeatureFieldMaker& fieldFor, Sampling sampling) {
+                                  const FeatureFieldMaker& fieldFor, Sampling sampling,
+                                  int oversample) {
     if (operators.empty()) return in;
-    PlacedVolume current = resample(in, &operators[0], 1, emptyValue, fieldFor, sampling);
+    // Only the last step takes the finer grid: the steps before it keep the
+    // scan's, as the render's own resampling does.
+    const auto step = [&](std::size_t i) { return i + 1 == operators.size() ? oversample : 1; };
+    PlacedVolume current = resample(in, &operators[0], 1, emptyValue, fieldFor, sampling, step(0));
     for (std::size_t i = 1; i < operators.size(); ++i)
-        current = resample(current, &operators[i], 1, emptyValue, fieldFor, sampling);
+        current = resample(current, &operators[i], 1, emptyValue, fieldFor, sampling, step(i));
     return current;
 }
 
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
                               float emptyValue, const FeatureFieldMaker& fieldFor,
-                              Sampling sampling) {
-    return resample(in, operators.data(), operators.size(), emptyValue, fieldFor, sampling);
+                              Sampling sampling, int oversample) {
+    return resample(in, operators.data(), operators.size(), emptyValue, fieldFor, sampling,
+                    oversample);
 }
 
 namespace {
 
 PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
-                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling) {
+                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling,
+                      int oversample) {
+    if (oversample < 1) throw std::invalid_argument("resampleDeformed: oversample below 1");
     const Volume& volume = in.volume;
     std::vector<Placed> placed;
     glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
@@ -133,17 +144,27 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
         lo = glm::min(lo, box.lo());
         hi = glm::max(hi, box.hi());
     }
-    // Whole voxels of the input grid, so untouched voxels land on themselves.
-    const glm::dvec3 s = volume.spacing;
-    const glm::dvec3 loVox = glm::floor((lo - volumeLo) / s + 1e-9);
-    const glm::dvec3 hiVox = glm::ceil((hi - volumeLo) / s - 1e-9);
-    lo = volumeLo + loVox * s;
+    // Whole voxels of the input grid, so untouched voxels land on themselves
+    // (oversampled, each splits into oversample^3 of the same box).
+    const glm::dvec3 loVox = glm::floor((lo - volumeLo) / volume.spacing + 1e-9);
+    const glm::dvec3 hiVox = glm::ceil((hi - volumeLo) / volume.spacing - 1e-9);
+    lo = volumeLo + loVox * volume.spacing;
+    const glm::dvec3 s = volume.spacing / double(oversample);
     const bool nearest = sampling == Sampling::Nearest;
-    Volume out =
-        Volume::allocate(glm::ivec3(hiVox - loVox), nearest ? volume.type : VoxelType::F32, s);
+    const glm::dvec3 dims = (hiVox - loVox) * double(oversample);
+    if (dims.x * dims.y * dims.z > double(detail::kMaxVoxels))
+        throw InputError("--oversample " + std::to_string(oversample) + ": the grid would be " +
+                         std::to_string(std::int64_t(dims.x)) + " x " +
+                         std::to_string(std::int64_t(dims.y)) + " x " +
+                         std::to_string(std::int64_t(dims.z)) +
+                         " voxels, past the limit of 2^31; take a smaller factor");
+    Volume out = Volume::allocate(glm::ivec3(dims), nearest ? volume.type : VoxelType::F32, s);
     // The grid grew along the index axes, which run along the scan's
     // directions in its space: untouched voxels keep their physical places.
-    out.origin = volume.origin + volume.direction * (loVox * s);
+    // The origin is the centre of voxel (0, 0, 0): half a fine voxel past the
+    // grid's corner, which lies half an input voxel before the input's centre.
+    out.origin =
+        volume.origin + volume.direction * (loVox * volume.spacing + 0.5 * (s - volume.spacing));
     out.direction = volume.direction;
     out.space = volume.space;
     if (nearest) {

@@ -50,16 +50,20 @@ enum class Sampling {
 /// `origin` moves with the grid along `in`'s directions, which it keeps). `fieldFor` makes the
 /// feature fields of the operators that are not axis-aligned, on `in`'s grid; without it every
 /// operator is evaluated as axis-aligned.
+/// With `oversample` K > 1 the grid's spacing is `in`'s divided by K over the
+/// same box (each input voxel's box holds K^3 output voxels), so cut faces
+/// are resolved K times finer; untouched voxels are then trilinear samples.
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
                               float emptyValue, const FeatureFieldMaker& fieldFor = {},
-                              Sampling sampling = Sampling::Trilinear);
+                              Sampling sampling = Sampling::Trilinear, int oversample = 1);
 
 /// Sequential composition (the paper's "save the intermediate volume"): each
 /// operator applies to the volume the previous ones left (and an aligned
 /// one's feature field is made from that volume).
+/// With `oversample`, only the last operator's step takes the finer grid.
 PlacedVolume resampleSequentially(const PlacedVolume& in,
                                   const std::vector<OperatorSpec>& operators, float emptyValue,
                                   const FeatureFieldMaker& fieldFor = {},
-                                  Sampling sampling = Sampling::Trilinear);
+                                  Sampling sampling = Sampling::Trilinear, int oversample = 1);
 
 } // namespace cutaway::operators

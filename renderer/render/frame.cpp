@@ -94,8 +94,8 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
     const bool preintegrated = scene.render.classification == Classification::Preintegrated;
     const float n = static_cast<float>(preintegrated ? kPreintegrationSize : kTransferTableSize);
     // Texel centres: value 0 at the centre of entry 0, value 1 at the centre of entry n-1.
-    u.valueToTf =
-        glm::vec4((n - 1.0f) / n, 0.5f / n, static_cast<float>(volume.smallestSpacing()), 0.0f);
+    u.valueToTf = glm::vec4((n - 1.0f) / n, 0.5f / n,
+                            static_cast<float>(opacityUnit(scene, volume.smallestSpacing())), 0.0f);
     const Shading& s = scene.render.shading;
     u.material = glm::vec4(scene.lights.ambient, s.diffuse, s.specular, s.shininess);
     u.headlight = glm::vec4(glm::vec3(scene.lights.headlight), 0.0f);

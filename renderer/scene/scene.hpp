@@ -34,8 +34,8 @@ struct VolumeSource {
 
 /// One control point of a piecewise-linear transfer function. `value` is in the
 /// volume's physical units (after slope/intercept). `alpha` is the opacity of a
-/// sample one reference step thick (the smallest voxel spacing); rendering
-/// corrects it for the actual slice spacing.
+/// sample one reference step thick (/transfer/unit_distance, by default the
+/// smallest voxel spacing); rendering corrects it for the actual slice spacing.
 struct TransferPoint {
     double value = 0.0;
     glm::vec3 color{1.0f};
@@ -295,6 +295,9 @@ struct Scene {
     std::optional<LabelSource> labels;
     TransferFunction transfer;
     std::vector<LabelTransfer> labelTransfers; ///< /transfer/labels
+    /// /transfer/unit_distance, mm, > 0: the thickness every transfer
+    /// function's alpha is the opacity of; none: the volume's smallest spacing.
+    std::optional<double> unitDistance;
     Camera camera;
     Lights lights;
     RenderSettings render;
@@ -307,6 +310,12 @@ struct Scene {
     /// as parsed): the default seed of the sampling offsets.
     int frame = 0;
 };
+
+/// The thickness in mm that `scene`'s transfer functions' alphas refer to,
+/// for a volume whose smallest voxel spacing is `smallestSpacing`.
+inline double opacityUnit(const Scene& scene, double smallestSpacing) {
+    return scene.unitDistance.value_or(smallestSpacing);
+}
 
 /// Parses and validates a scene document. Every problem found is reported at
 /// once in one InputError whose message has one line per problem:

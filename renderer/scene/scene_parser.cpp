@@ -194,6 +194,7 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     root.object("transfer", [&](JsonReader& reader) {
         parseTransfer(reader, scene.transfer);
         parseLabelTransfers(reader, scene.labelTransfers, scene.labels);
+        scene.unitDistance = reader.number("unit_distance", Range::openClosed(0.0, 1e6));
     });
     root.object("camera", [&](JsonReader& reader) { parseCamera(reader, scene.camera); });
     root.object("lights", [&](JsonReader& reader) { parseLights(reader, scene.lights); });

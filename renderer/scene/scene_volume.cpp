@@ -159,8 +159,11 @@ void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem
 ///    * value  number, volume value (after slope/intercept), in [-1e30, 1e30], required
 ///    * color  [number x3], linear RGB, each in [0, 1], required
 ///    * alpha  number, in [0, 1], required
-///             Opacity of a sample one reference step thick (the smallest
-///             voxel spacing); the renderer corrects it for the slice spacing.
+///             Opacity of a sample one reference step thick (unit_distance);
+///             the renderer corrects it for the slice spacing.
+///  * unit_distance number, mm, in (0, 1e6], default the volume's smallest
+///             voxel spacing: the thickness every alpha (and each label's) is
+///             the opacity of; read in parseScene, beside labels.
 ///
 /// Without a /transfer section: defaultTransfer(), a grey ramp from
 /// transparent at 0 to alpha 0.6 at 255 (suits 8-bit data).

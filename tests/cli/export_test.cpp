@@ -334,6 +334,49 @@ TEST_F(CliTest, ExportOfAGrownGridKeepsTheScanGeometry) {
             EXPECT_NEAR(writtenLabels.direction[a][b], obliqueDirections()[a][b], 1e-12);
 }
 
+// --oversample K: the same box on a grid K times finer along each axis, in
+// the scan's space and directions; the labels alike. Control: K = 1 is the
+// grid above. Out of range, the option is refused by name, nothing written.
+TEST_F(CliTest, ExportOversampledCoversTheSameBoxKTimesFiner) {
+    const Phantom orange = orientedOrange();
+    writeNrrd(m_dir / "scan.nrrd", orange.values);
+    writeNrrd(m_dir / "labels.nrrd", orange.labels);
+    const std::string text = std::string(R"({"version": 1, "volume": {"file": "scan.nrrd"},
+        "labels": {"file": "labels.nrrd"}, "operators": )") +
+                             kGrowingPeeler + "}";
+    const Scene scene = parseScene(nlohmann::json::parse(text), m_dir, "export test");
+    const job::Exported one = job::exportVolume(scene, true, 1);
+    const job::Exported three = job::exportVolume(scene, true, 3);
+    EXPECT_EQ(three.volume.dims, one.volume.dims * 3);
+    ASSERT_TRUE(three.labels);
+    EXPECT_EQ(three.labels->dims, three.volume.dims);
+    EXPECT_EQ(three.volume.direction, one.volume.direction);
+    EXPECT_EQ(three.volume.space, one.volume.space);
+    // The box's corner, half a voxel before the centre of voxel 0.
+    const auto corner = [](const Volume& v) { return v.origin - v.direction * (0.5 * v.spacing); };
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(three.volume.spacing[a], one.volume.spacing[a] / 3.0, 1e-12) << a;
+        EXPECT_NEAR(corner(three.volume)[a], corner(one.volume)[a], 1e-9) << a;
+        EXPECT_NEAR(three.labels->origin[a], three.volume.origin[a], 1e-12) << a;
+    }
+    // The fine voxel at the centre of a coarse one's box lies where it does,
+    // away from the peeler: the middle of 3 x 3 x 3 takes the coarse value.
+    const glm::ivec3 v(20, 20, 30);
+    EXPECT_NEAR(three.volume.value(3 * v.x + 1, 3 * v.y + 1, 3 * v.z + 1),
+                one.volume.value(v.x, v.y, v.z), 1e-4);
+
+    const auto file = write("o.json", text);
+    const std::string out = (m_dir / "o.nrrd").string();
+    CommandResult r = runCutaway("export " + file.string() + " -o " + out + " --oversample 2");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readVolume(out).dims, one.volume.dims * 2);
+    const std::string refused = (m_dir / "refused.nrrd").string();
+    r = runCutaway("export " + file.string() + " -o " + refused + " --oversample 5");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--oversample"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(refused));
+}
+
 // An aligned operator's segment with no voxel is bad input, as in a render:
 // the export names the operator, exits 2 and writes nothing.
 TEST_F(CliTest, ExportRefusesAnAlignedOperatorWithAnEmptySegment) {

@@ -169,11 +169,11 @@ Image renderCpuReference(const Scene& scene, const Volume& volume) {
     const render::CameraMatrices cam = render::computeCamera(scene.camera, box, w, h);
     const double minSpacing = std::min({volume.spacing.x, volume.spacing.y, volume.spacing.z});
     const double sliceMm = scene.render.sliceSpacing * minSpacing;
+    const double unitMm = opacityUnit(scene, minSpacing);
     const bool preintegrated = scene.render.classification == Classification::Preintegrated;
     const std::vector<glm::vec4> table1D = render::tabulateTransfer(scene.transfer, window);
-    const std::vector<glm::vec4> table2D = preintegrated
-                                               ? render::preintegrate(table1D, minSpacing, sliceMm)
-                                               : std::vector<glm::vec4>{};
+    const std::vector<glm::vec4> table2D =
+        preintegrated ? render::preintegrate(table1D, unitMm, sliceMm) : std::vector<glm::vec4>{};
 
     // The same uniforms the GPU gets, for the shared lighting function.
     shader::FrameUniforms u{};
@@ -202,8 +202,7 @@ Image renderCpuReference(const Scene& scene, const Volume& volume) {
     if (cam.perspective) sMin = std::max(sMin, glm::dot(f, cam.eye) + cam.nearPlane);
 
     const int refine = preintegrated ? scene.render.refine : 1;
-    const SlabContext ctx{cv,      half,    preintegrated,        refine,
-                          table1D, table2D, sliceMm / minSpacing, u};
+    const SlabContext ctx{cv, half, preintegrated, refine, table1D, table2D, sliceMm / unitMm, u};
     Image img(w, h);
     for (int py = 0; py < h; ++py)
         for (int px = 0; px < w; ++px) {

@@ -209,6 +209,8 @@ const std::map<std::string, std::string> kBadScenes = {
     {"55-cut-face-on-pliers.json",
      ": /operators/0/cut_face: pliers cut nothing: only \"peeler\" and \"retractor\" take it"},
     {"56-refine-out-of-range.json", ": /render/refine: expected an integer in [1, 8], got 16"},
+    {"57-unit-distance-negative.json",
+     ": /transfer/unit_distance: expected a number in (0, 1000000], got -1"},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {

@@ -19,7 +19,8 @@ gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const Gpu
     halves.reserve(std::size_t(width) * height * functions.size());
     for (const TransferFunction* tf : functions) {
         std::vector<glm::vec4> table = tabulateTransfer(*tf, volume.window);
-        if (preintegrated) table = preintegrate(table, volume.smallestSpacing(), sliceMm);
+        if (preintegrated)
+            table = preintegrate(table, opacityUnit(scene, volume.smallestSpacing()), sliceMm);
         for (const glm::vec4& entry : table)
             halves.push_back(glm::packHalf4x16(entry));
     }
@@ -57,7 +58,7 @@ void ClassificationTables::update(const Scene& scene, const GpuVolume& volume, d
     TransferKey transferKey{scene.render.classification == Classification::Preintegrated,
                             volume.window,
                             sliceMm,
-                            volume.smallestSpacing(),
+                            opacityUnit(scene, volume.smallestSpacing()),
                             {}};
     for (const TransferFunction* tf : classifyingTransfers(scene, withLabels))
         transferKey.functions.push_back(*tf);

@@ -39,7 +39,7 @@ private:
     struct TransferKey {
         bool preintegrated = false;
         bake::ValueWindow window;
-        double sliceMm = 0.0, voxelMm = 0.0;
+        double sliceMm = 0.0, unitMm = 0.0;      ///< the slab, and what alphas refer to
         std::vector<TransferFunction> functions; ///< classifyingTransfers
         bool operator==(const TransferKey&) const = default;
     };
