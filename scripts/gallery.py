@@ -153,6 +153,22 @@ build/cutaway render scenes/fig3_axis_ct_head.json --set /camera/fov=12 \
   --set '/camera/orbit/target=[0,10,95]' --set '/render/size=[256,256]' --png \
   --set '/operators/0/cut_face={"color":[0.78,0.2,0.16],"mix":0.85,"depth":2}'
 ```
+
+## A cut face, whole slabs and sub-slabs
+
+![Figure 3(b)'s flap and bared skull, close up, each slab taken whole](gallery/refine_before.png)
+![The same with the default sub-slabs](gallery/refine_after.png)
+
+Figure 3(b)'s flap and the skull it bares, close up: on the left each slab taken whole
+(`"quality": "draft"`), the grain of one slab per voxel lit once on the cut bone and the
+flap's underside; on the right the default, each slab that shows taken in 4 sub-slabs
+(`/render/refine`, [quality.md](quality.md)). 256 x 256:
+
+```sh
+build/cutaway render scenes/fig3_surface_ct_head.json --set /camera/fov=12 \
+  --set '/camera/orbit/target=[0,10,95]' --set '/render/size=[256,256]' --png \
+  --set /render/quality=draft
+```
 """
 
 
