@@ -4,8 +4,8 @@ Each round renders every scene once with setting A and once with setting B,
 back to back, their order alternating from round to round, so the machine's
 drift (20-40 % over minutes on the 2-core machine:
 docs/design/profiling.md#noise-first) falls on both alike. A whole process
-counts what a user waits for: loading the scan, the bakes, the frame and
-its EXR. Prints per scene the median time of each and the median of the
+counts what a user waits for: loading the scan, the bakes, every frame of
+the scene (a sequence's too) and their EXRs. Prints per scene the median time of each and the median of the
 B / A ratios over the rounds, with their range.
 
 Usage: python3 bench/scene_times.py [--a "ARGS"] [--b "ARGS"] [--rounds N]
@@ -34,10 +34,9 @@ GALLERY = ["demo", "fig3_axis_ct_head", "fig3_surface_ct_head", "fig3_segment_ct
 
 
 def render_seconds(binary, scene, extra, out_dir):
-    """One whole `cutaway render` of the scene's first frame, in seconds."""
+    """One whole `cutaway render` of the scene (every frame of a sequence), in seconds."""
     command = [binary, "render", os.path.join(ROOT, "scenes", scene + ".json"),
-               "-o", os.path.join(out_dir, scene + "_####.exr"), "--frames", "0..0",
-               "--quiet"] + extra
+               "-o", os.path.join(out_dir, scene + "_####.exr"), "--quiet"] + extra
     start = time.monotonic()
     result = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     seconds = time.monotonic() - start
