@@ -120,35 +120,15 @@ PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<Operator
 
 namespace {
 
-PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
-                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling,
-                      int oversample) {
-    if (oversample < 1) throw std::invalid_argument("resampleDeformed: oversample below 1");
+// The output grid of a resampling of `in` that covers [lo, hi] (world mm):
+// whole voxels of the input grid, so untouched voxels land on themselves
+// (oversampled, each splits into oversample^3 of the same box), zeroed, with
+// the input's space and directions; worldLo its box's low corner.
+PlacedVolume outputGrid(const PlacedVolume& in, glm::dvec3 lo, glm::dvec3 hi, Sampling sampling,
+                        int oversample) {
     const Volume& volume = in.volume;
-    std::vector<Placed> placed;
-    glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
-    const glm::dvec3 volumeLo = lo;
-    const WorldBox volumeBox{glm::dmat4(1.0), {lo, hi}};
-    for (const OperatorSpec& op : std::span(first, count)) {
-        const WorldBox box{op.localToWorld, materialBounds(op.params)};
-        FeatureField field;
-        if (fieldFor && op.alignment.mode != AlignmentMode::Axis) {
-            field = fieldFor(volume, op);
-            if (!field || field->size() != volume.voxelCount())
-                throw std::logic_error("resampleDeformed: a feature field off the volume's grid");
-        }
-        placed.push_back({&op, box, glm::inverse(op.localToWorld), std::move(field)});
-        // Material moves out of the operator's own box V_T: one that misses
-        // the volume moves none, and does not grow the grid.
-        if (!intersects(WorldBox{op.localToWorld, {}}, volumeBox)) continue;
-        lo = glm::min(lo, box.lo());
-        hi = glm::max(hi, box.hi());
-    }
-    // Whole voxels of the input grid, so untouched voxels land on themselves
-    // (oversampled, each splits into oversample^3 of the same box).
-    const glm::dvec3 loVox = glm::floor((lo - volumeLo) / volume.spacing + 1e-9);
-    const glm::dvec3 hiVox = glm::ceil((hi - volumeLo) / volume.spacing - 1e-9);
-    lo = volumeLo + loVox * volume.spacing;
+    const glm::dvec3 loVox = glm::floor((lo - in.worldLo) / volume.spacing + 1e-9);
+    const glm::dvec3 hiVox = glm::ceil((hi - in.worldLo) / volume.spacing - 1e-9);
     const glm::dvec3 s = volume.spacing / double(oversample);
     const bool nearest = sampling == Sampling::Nearest;
     const glm::dvec3 dims = (hiVox - loVox) * double(oversample);
@@ -171,6 +151,37 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
         out.slope = volume.slope;
         out.inter = volume.inter;
     }
+    return PlacedVolume{std::move(out), in.worldLo + loVox * volume.spacing};
+}
+
+PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
+                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling,
+                      int oversample) {
+    if (oversample < 1) throw std::invalid_argument("resampleDeformed: oversample below 1");
+    const Volume& volume = in.volume;
+    std::vector<Placed> placed;
+    glm::dvec3 lo = in.worldLo, hi = in.worldLo + volume.extent();
+    const WorldBox volumeBox{glm::dmat4(1.0), {lo, hi}};
+    for (const OperatorSpec& op : std::span(first, count)) {
+        const WorldBox box{op.localToWorld, materialBounds(op.params)};
+        FeatureField field;
+        if (fieldFor && op.alignment.mode != AlignmentMode::Axis) {
+            field = fieldFor(volume, op);
+            if (!field || field->size() != volume.voxelCount())
+                throw std::logic_error("resampleDeformed: a feature field off the volume's grid");
+        }
+        placed.push_back({&op, box, glm::inverse(op.localToWorld), std::move(field)});
+        // Material moves out of the operator's own box V_T: one that misses
+        // the volume moves none, and does not grow the grid.
+        if (!intersects(WorldBox{op.localToWorld, {}}, volumeBox)) continue;
+        lo = glm::min(lo, box.lo());
+        hi = glm::max(hi, box.hi());
+    }
+    PlacedVolume grid = outputGrid(in, lo, hi, sampling, oversample);
+    Volume& out = grid.volume;
+    lo = grid.worldLo;
+    const glm::dvec3 s = out.spacing;
+    const bool nearest = sampling == Sampling::Nearest;
     const std::size_t bytes = voxelSize(out.type);
     // Writes output voxel i from the input at p (nothing: empty).
     const auto write = [&](std::size_t i, const GridPoint& p) {
@@ -226,7 +237,7 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
                 }
                 write(out.index(x, y, z), p);
             }
-    return PlacedVolume{std::move(out), lo};
+    return grid;
 }
 
 } // namespace

@@ -94,10 +94,11 @@ protected:
 
 // --oversample: inside the operator's region (the pixels whose first visible
 // sample the live render took from the operator) the export rendered comes
-// closer to the live render, cut walls resolved 3 times finer. Measured on
+// closer to the live render, its cut walls resolved finer. Measured on
 // lavapipe, unlit, in dB: axis-aligned 33.5 at K = 1, 38.0 at 2, 41.6 at 3;
-// surface-aligned 29.2, 33.3, 34.8. Each must gain 4 dB from 1 to 3 (its
-// control: the same comparison at K = 1).
+// surface-aligned 29.2, 33.3, 34.8. Each must gain 3 dB from 1 to 2 (its
+// control: the same comparison at K = 1); K = 2 keeps the CPU resampling
+// within the sanitized suite's time.
 TEST_F(ExportRender, OversampledExportsComeCloserInsideTheOperator) {
     for (const json& alignment :
          {json{{"mode", "axis"}}, json{{"mode", "surface"}, {"depth", 3}, {"band", 1}}}) {
@@ -105,9 +106,9 @@ TEST_F(ExportRender, OversampledExportsComeCloserInsideTheOperator) {
         const Pair coarse = renderBoth(alignment, false, 1);
         const double one = operatorRegionPsnr(coarse.rendered, coarse.exported, pixels);
         EXPECT_GT(pixels, 2000) << alignment.dump() << ": the operator shows";
-        const Pair fine = renderBoth(alignment, false, 3);
-        const double three = operatorRegionPsnr(fine.rendered, fine.exported, pixels);
-        EXPECT_GT(three, one + 4.0) << alignment.dump() << ": K = 1 " << one;
+        const Pair fine = renderBoth(alignment, false, 2);
+        const double two = operatorRegionPsnr(fine.rendered, fine.exported, pixels);
+        EXPECT_GT(two, one + 3.0) << alignment.dump() << ": K = 1 " << one;
     }
 }
 
