@@ -41,6 +41,18 @@ shader::OperatorParams sampledParams(const shader::OperatorParams& params, const
     return p;
 }
 
+double cutSlope(const OperatorSpec& op) {
+    const glm::dmat3 a(op.localToWorld);
+    if (op.type == OperatorType::Peeler) return 1.0 / glm::length(a[2]);
+    return 1.0 / std::min({glm::length(a[0]), glm::length(a[1]), glm::length(a[2])});
+}
+
+double cutMarginCap(const OperatorSpec& op, const LocalBox& domain) {
+    glm::dvec3 texel = (domain.hi - domain.lo) / glm::dvec3(op.resolution);
+    if (op.type == OperatorType::Peeler) texel *= glm::dvec3(op.params.b.z, op.params.b.w, 1.0);
+    return std::max({texel.x, texel.y, texel.z});
+}
+
 std::array<glm::dvec3, 8> WorldBox::corners() const {
     std::array<glm::dvec3, 8> c;
     for (int i = 0; i < 8; ++i) {

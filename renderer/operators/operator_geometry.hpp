@@ -32,6 +32,17 @@ LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolut
 shader::OperatorParams sampledParams(const shader::OperatorParams& params, const LocalBox& box,
                                      glm::ivec3 resolution);
 
+/// A bound on how fast the operator's signed cut distance w changes, in its
+/// units per mm: w is a distance in the peeler's frame of equal units (one
+/// unit its half z) and in the others' local frame (shared/operators.h).
+double cutSlope(const OperatorSpec& op);
+
+/// How far beyond a cut, in units of w, a sample may still show part of the
+/// material when a cut's coverage is taken over a pixel's footprint
+/// (/render/cut_antialias): the coarsest texel of the map over `domain`, as
+/// wide as the gap a peeler carves between its flap and the material.
+double cutMarginCap(const OperatorSpec& op, const LocalBox& domain);
+
 /// An oriented box in the world: the local box under an affine map.
 struct WorldBox {
     glm::dmat4 localToWorld{1.0};

@@ -108,8 +108,14 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
     const bool byLabel = volume.labels && !scene.labelTransfers.empty();
     u.flags = glm::vec4(static_cast<float>(count), s.enabled ? 1.0f : 0.0f,
                         preintegrated ? 1.0f : 0.0f, byLabel ? 1.0f : 0.0f);
+    // A pixel's width in mm is the same everywhere (orthographic) or grows
+    // with the depth (perspective); cut_antialias pixels of it are the
+    // footprint a cut's coverage is taken over.
+    const double pixel = 2.0 / (std::abs(cam.proj[1][1]) * scene.render.height);
+    const auto footprint = static_cast<float>(pixel * scene.render.cutAntialias);
     u.termination =
-        glm::vec4(static_cast<float>(scene.render.terminationOpacity), 0.0f, 0.0f, 0.0f);
+        glm::vec4(static_cast<float>(scene.render.terminationOpacity),
+                  cam.perspective ? 0.0f : footprint, cam.perspective ? footprint : 0.0f, 0.0f);
     // The pass's offset is set per pass (VolumeRenderer::renderPasses); the seed
     // wraps at 2^16 so that float keeps it whole.
     const int seed = scene.render.seed.value_or(scene.frame);

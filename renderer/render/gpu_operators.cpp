@@ -27,7 +27,8 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
     u.localToWorld = glm::mat4(spec.localToWorld);
     u.worldToLocal = glm::mat4(glm::inverse(spec.localToWorld));
     const glm::dvec3 texel = (box.local.hi - box.local.lo) / glm::dvec3(spec.resolution);
-    u.mapLo = glm::vec4(glm::vec3(box.local.lo), 0.0f);
+    u.mapLo = glm::vec4(glm::vec3(box.local.lo),
+                        static_cast<float>(operators::cutMarginCap(spec, box.local)));
     u.mapHi = glm::vec4(glm::vec3(box.local.hi),
                         static_cast<float>(std::min({texel.x, texel.y, texel.z})));
     // D of Eq. 7 from millimetres to the units of w: the mean scale of the
@@ -37,8 +38,8 @@ shader::OperatorUniforms uniformsOf(const OperatorSpec& spec, const operators::W
                              ? glm::length(a[2])
                              : (glm::length(a[0]) + glm::length(a[1]) + glm::length(a[2])) / 3.0;
     u.band = glm::vec4(static_cast<float>(spec.normalBand / scale), static_cast<float>(index + 3),
-                       0.0f, 0.0f); // id code: see slice_common.h
-    if (spec.cutFace) {             // its layer in the same units as D
+                       0.0f, static_cast<float>(operators::cutSlope(spec))); // id: slice_common.h
+    if (spec.cutFace) { // its layer in the same units as D
         u.band.z = static_cast<float>(spec.cutFace->depth / scale);
         u.cutFace = glm::vec4(spec.cutFace->color, static_cast<float>(spec.cutFace->mix));
     }

@@ -147,6 +147,9 @@ inline constexpr double kDefaultTerminationOpacity = 1.0 - 1.0 / 255.0;
 inline constexpr int kDefaultRefine = 4;
 inline constexpr int kDraftRefine = 1;
 
+/// /render/cut_antialias's default: a cut's coverage over one pixel.
+inline constexpr double kDefaultCutAntialias = 1.0;
+
 struct RenderSettings {
     int width = 512;           ///< /render/size[0], [1, 16384]
     int height = 512;          ///< /render/size[1]
@@ -171,6 +174,10 @@ struct RenderSettings {
     /// /render/refine, [1, 8]: the sub-slabs a pre-integrated slab that
     /// shows is taken in; 1 none. /render/quality "draft" makes 1 the default.
     int refine = kDefaultRefine;
+    /// /render/cut_antialias, [0, 4] pixels: the width of the footprint
+    /// over which a cut's coverage is taken (operator_sample.h, cutCoverage);
+    /// 0: each pixel's ray alone decides, and a slanted cut's edge steps.
+    double cutAntialias = kDefaultCutAntialias;
 };
 
 enum class PixelType { Half, Float };

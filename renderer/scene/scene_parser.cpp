@@ -53,6 +53,9 @@ namespace scene_detail {
 ///                   resolved, classified and lit on its own
 ///  * quality        "final" or "draft", default "final": draft takes each slab
 ///                   whole (refine 1), for speed while a scene is being made
+///  * cut_antialias  number, in [0, 4], default 1: the footprint, in pixels, over which
+///                   a cut's coverage is taken, so a slanted cut has a smooth edge; 0 lets
+///                   each pixel's ray decide alone
 ///  * shading        object, default {}: Blinn-Phong material of every sample
 ///    * enabled      boolean, default true: false shows the transfer function's colours unlit
 ///    * diffuse      number, in [0, 1], default 0.8
@@ -109,6 +112,7 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
                             ? kDraftRefine
                             : kDefaultRefine;
     render.refine = int(reader.integer("refine", render.refine, 1, 8));
+    render.cutAntialias = reader.number("cut_antialias", render.cutAntialias, 0.0, 4.0);
 
     reader.object("shading", [&](JsonReader& shading) {
         Shading& s = render.shading;

@@ -178,6 +178,20 @@ vec3 featureDirection(OperatorUniforms op, sampler3D feature, int slot, int mode
     return featureGradientOf(below, above, op.featureScale.xyz);
 }
 
+// The footprint, in mm, over which a cut's coverage is taken at `world`
+// (FrameUniforms.termination; 0 with /render/cut_antialias 0).
+float footprintMm(vec3 world) {
+    return u.termination.y + u.termination.z * max(dot(world - u.eye.xyz, u.viewDir.xyz), 0.0);
+}
+
+// How far beyond the cut (in units of w) a sample at `world` may still show
+// part of the material: half the most w can spread over the footprint on a
+// surface seen down to about 15 degrees (cutCovered), at most a texel of the
+// map (OperatorUniforms.mapLo.w).
+float cutMargin(OperatorUniforms op, vec3 world) {
+    return min(2.0 * footprintMm(world) * op.band.w, op.mapLo.w);
+}
+
 struct Resolved {
     int which;     // CW_CASE_*
     vec3 tc;       // texture coordinate of p (transformed or masked)
@@ -187,6 +201,7 @@ struct Resolved {
     float feature; // the feature field at tc (alignment other than axis)
     float m0;      // the mask M at p0 and at p' (0 with axis alignment)
     float mPrime;
+    float margin; // cutMargin at p': p0 counts as kept where w > -margin
 };
 
 // Eq. 3 and 4 for the point p' = world, and the volume's value at p (fetched
@@ -200,7 +215,8 @@ Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
     vec4 p0 = probe(op, map, world);
     vec3 tc0 = toTexture(p0.xyz);
     vec3 tcPrime = toTexture(world);
-    bool p0Valid = p0.w > 0.0 && inVolume(tc0);
+    float margin = cutMargin(op, world);
+    bool p0Valid = p0.w > -margin && inVolume(tc0);
     bool primeIn = inVolume(tcPrime);
     float f0, fPrime, moving0, movingPrime;
     float m0 = maskAt(op, feature, slot, mode, tc0, f0, moving0);
@@ -220,6 +236,7 @@ Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
     r.shift = length((op.worldToLocal * vec4(p0.xyz - world, 0.0)).xyz) / op.mapHi.w;
     r.m0 = m0;
     r.mPrime = mPrime;
+    r.margin = margin;
     return r;
 }
 
@@ -260,11 +277,11 @@ vec4 featureGradient(OperatorUniforms op, sampler3D feature, int slot, int mode,
 
 // For a slab with one end `v` kept and the other `e` empty: the quantity
 // whose sign change emptied e, at v (> 0) and at e (<= 0 when it explains e):
-// w for a cut, 0.5 - M at p0 where the feature stays behind, M at p' - 0.5
-// where the feature left in place ends.
+// w beyond the margin for a cut, 0.5 - M at p0 where the feature stays
+// behind, M at p' - 0.5 where the feature left in place ends.
 vec2 presence(Resolved v, Resolved e) {
     if (v.which == CW_CASE_MASKED) return vec2(v.mPrime - 0.5, e.mPrime - 0.5);
-    if (e.cutW <= 0.0) return vec2(v.cutW, e.cutW);
+    if (e.cutW <= -e.margin) return vec2(v.cutW + e.margin, e.cutW + e.margin);
     return vec2(0.5 - v.m0, 0.5 - e.m0);
 }
 
@@ -332,15 +349,15 @@ Slab operatorSlab(int mode, Resolved front, Resolved back) {
         s.empty = false;
         s.kept = keptFraction(presence(back, front), 0.0);
         s.middle = back;
-        bool cut = back.which == CW_CASE_TRANSFORMED && front.cutW <= 0.0;
-        s.wNear = cut ? 0.0 : back.cutW;
+        bool cut = back.which == CW_CASE_TRANSFORMED && front.cutW <= -front.margin;
+        s.wNear = cut ? -front.margin : back.cutW;
         s.wFar = back.cutW;
         s.frontValue = s.backValue = back.value;
         s.shadeAt = 1.0 - 0.5 * s.kept;
     } else if (backEmpty) { // it leaves the material through a face
         s.kept = keptFraction(presence(front, back), 1.0);
-        bool cut = front.which == CW_CASE_TRANSFORMED && back.cutW <= 0.0;
-        s.wFar = cut ? 0.0 : front.cutW;
+        bool cut = front.which == CW_CASE_TRANSFORMED && back.cutW <= -back.margin;
+        s.wFar = cut ? -back.margin : front.cutW;
         s.shadeAt = 0.5 * s.kept;
     } else {
         s.backValue = back.value;
@@ -387,6 +404,58 @@ vec4 operatorSlabColor(OperatorUniforms op, Slab s, float obliquity) {
     return c;
 }
 
+// The opacity of material of normalized value `value` over `mm` (the
+// transfer function at tc's layer; 0 when post-classified, whose table has
+// no slab of one value).
+float opacityOver(float value, float mm, vec3 tc) {
+    if (!cwPreintegrated) return 0.0;
+    return classifySlab(value, value, mm / u.viewDir.w, classLayer(tc)).a;
+}
+
+// The slab's colour `c` (premultiplied) times the share of the pixel's
+// footprint that the cut leaves, over the kept part of slab `s` (w from
+// s.wNear to s.wFar). `cut` is w's gradient (per mm), `ray` the unit ray,
+// `surface` the data's unit normal there and how much of a surface it is.
+// Across the footprint w spreads by the footprint's width times its gradient
+// across the ray; where the pixel sees a surface, a neighbouring ray meets
+// it nearer or farther, which a slanted surface stretches (the gradient
+// along the surface instead). Held to twice the margin. The material shows
+// where w > 0, a share clamp(0.5 + w / spread, 0, 1) of the footprint.
+// Translucent material takes the mean share over the slab. Where the
+// material in front (at the slab's front, over the slab's length) is
+// opaque, the part of the footprint that met it is spent, and the slab
+// adds only the share it adds (what its back leaves beyond its front):
+// taken as the mean at every slab, a pixel at the edge of an opaque cut
+// took its share again at each slab behind the surface and came out nearly
+// opaque. Compositing keeps no memory along the ray (the slicer blends
+// slabs in the framebuffer), so which material counts as spent is judged
+// slab by slab: a finer slice spacing moves an edge by up to half a pixel
+// (docs/quality.md). A cut's edge seen at a slant so is straight and
+// smooth where each pixel's ray alone would decide in steps. `stepMm`: the
+// slab's length.
+vec4 cutCovered(OperatorUniforms op, Slab s, vec4 c, vec3 cut, vec3 ray, vec4 surface, vec3 world,
+                float stepMm) {
+    float footprint = footprintMm(world);
+    if (footprint <= 0.0 || c.a <= 0.0) return c;
+    float facing = dot(ray, surface.xyz);
+    facing = facing < 0.0 ? min(facing, -0.05) : max(facing, 0.05);
+    vec3 g = cut - surface.xyz * (surface.w * dot(cut, ray) / facing);
+    vec3 across = g - dot(g, ray) * ray;
+    float half_ = 0.5 * min(footprint * length(across), 2.0 * cutMargin(op, world));
+    if (min(s.wNear, s.wFar) >= half_) return c;
+    float spread = max(2.0 * half_, 1e-6);
+    float near = s.wNear + half_, far = s.wFar + half_;
+    float hi = max(near, far), lo = min(near, far);
+    if (hi <= 0.0) return vec4(0.0);
+    // The slab's opacity over the part where the share is above 0.
+    float alpha = correctOpacity(c.a, lo >= 0.0 ? 1.0 : hi / (hi - lo));
+    float mean = bandMean(max(lo, 0.0), hi, spread);
+    float atNear = clamp(near / spread, 0.0, 1.0);
+    float added = max(clamp(far / spread, 0.0, 1.0) - atNear, 0.0) / max(1.0 - atNear, 1e-3);
+    float opaque = opacityOver(s.frontValue, stepMm, s.middle.tc);
+    return c * (alpha * mix(mean, added, opaque) / c.a);
+}
+
 // The slab's colour `c` (operatorSlabColor) lit; `world` is p' (the slab's
 // front), seen from `viewer` (viewerOf), `stepMm` the slab's length along
 // the ray toward -viewer.toEye.
@@ -423,6 +492,8 @@ vec4 lightOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D fea
         vec3 cut = aInvT * cutGradient; // points into the material
         float omega = op.band.x > 0.0 ? 1.0 - bandMean(s.wNear, s.wFar, op.band.x) : 0.0;
         n = vec4(dot(carried, carried) > 1e-12 ? normalize(carried) : vec3(0.0), g.w);
+        c = cutCovered(op, s, c, cut, -viewer.toEye, vec4(n.xyz, smoothstep(0.05, 0.25, g.w)),
+                       shadePoint, stepMm);
         if (omega > 0.0 && dot(cut, cut) > 1e-12) { // Eq. 7
             vec3 blended = mix(n.xyz, normalize(cut), omega);
             n = vec4(dot(blended, blended) > 1e-12 ? normalize(blended) : normalize(cut),

@@ -25,7 +25,9 @@ struct FrameUniforms {
                                     // w: 1 classification by label (classTex), 0 one table
     vec4 termination;               // x: early ray termination: a pixel whose composited opacity
                       // reaches this takes no more samples (/render/termination_opacity;
-                      // what lies behind could add at most 1 - x to any channel)
+                      // what lies behind could add at most 1 - x to any channel);
+                      // y + z * depth (mm along viewDir from the eye): the footprint a
+                      // cut's coverage is taken over, in mm (/render/cut_antialias)
     vec4 sampling; // where along the rays the samples lie (shared/sampling.h): x 1 with
                    // /render/jitter, y this pass's offset in spacings, z the seed
 };

@@ -16,10 +16,13 @@ CW_NAMESPACE_BEGIN
 struct OperatorUniforms {
     mat4 worldToLocal; // world (mm) -> the operator's local frame (its box is [-1, 1]^3)
     mat4 localToWorld; // A of Eq. 8
-    vec4 mapLo;        // xyz: local corner of the baked map's domain (the deformed box V'_T)
+    vec4 mapLo;        // xyz: local corner of the baked map's domain (the deformed box V'_T);
+                       // w: how far beyond a cut (units of w) a sample may show part of the
+                       // material (operators::cutMarginCap)
     vec4 mapHi;        // xyz: opposite corner; w: one texel of the map, local units
     vec4 band;         // x: D of Eq. 7 in local units (0: no blending); y: id code, 3 + index;
-                       // z: the cut face's layer, local units (cutFace)
+                       // z: the cut face's layer, local units (cutFace); w: a bound on
+                       // |grad w|, units of w per mm (operators::cutSlope)
     vec4 align;        // x: CW_ALIGN_* (feature.h); y: tau, z: delta (mm, surface);
                        // w: delta for segment alignment's mask (mm, informational)
     vec4 featureScale; // xyz: 1 / (2 spacing) of the feature field's grid, 1/mm

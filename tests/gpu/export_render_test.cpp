@@ -21,10 +21,13 @@ using nlohmann::json;
 // carries through the map's Jacobian and the export takes from its own
 // grid, do not count), a fixed camera distance and window (the export's
 // volume is larger and its values a resampling of the scan's), and a peeler
-// over the crown that reaches into the brain.
+// over the crown that reaches into the brain. Cuts as each pixel's ray
+// sees them (cut_antialias 0): the export is a grid of voxels, which cannot
+// hold a coverage taken over the render's pixels.
 json peeledHead(const json& alignment) {
     json doc = operatorPhantomDocument();
     doc["volume"]["window"] = {0, 255};
+    doc["render"]["cut_antialias"] = 0;
     doc["camera"]["orbit"] = {{"azimuth", 270}, {"elevation", 70}, {"distance", 190}};
     doc["render"]["size"] = {128, 128};
     doc["render"]["shading"] = {{"enabled", false}};

@@ -211,6 +211,8 @@ const std::map<std::string, std::string> kBadScenes = {
     {"56-refine-out-of-range.json", ": /render/refine: expected an integer in [1, 8], got 16"},
     {"57-unit-distance-negative.json",
      ": /transfer/unit_distance: expected a number in (0, 1000000], got -1"},
+    {"58-cut-antialias-out-of-range.json",
+     ": /render/cut_antialias: expected a number in [0, 4], got 5"},
 };
 
 TEST(SceneLoad, BadScenesGiveTheirOneError) {

@@ -143,6 +143,15 @@ TEST(SceneParser, DraftQualitySetsRefinesDefaultOnly) {
     EXPECT_EQ(refineOf(R"({"refine": 2, "quality": "draft"})"), 2);
 }
 
+TEST(SceneParser, ReadsCutAntialias) {
+    EXPECT_EQ(parseScene(patched("{}"), "/s").render.cutAntialias, 1.0);
+    EXPECT_EQ(parseScene(patched(R"({"render": {"cut_antialias": 0}})"), "/s").render.cutAntialias,
+              0.0);
+    EXPECT_EQ(
+        parseScene(patched(R"({"render": {"cut_antialias": 2.5}})"), "/s").render.cutAntialias,
+        2.5);
+}
+
 TEST(SceneParser, ReadsLookAtCamera) {
     const Scene scene = parseScene(patched(R"({"camera": {"look_at":
         {"eye": [0, -400, 100], "target": [0, 0, 10], "up": [0, 0, 1]}}})"),

@@ -12,13 +12,16 @@ namespace {
 // One texel of the baked map, as operator_bake.comp computes it.
 struct Texel {
     glm::vec3 displacement; // pre-image minus the texel's position, local units
-    float w;                // signed distance to the cut: <= 0 empty
+    float w;                // signed distance to the cut plus its margin (cutMarginCap): <= 0 empty
 };
 
 std::vector<Texel> mapTexels(const OperatorSpec& spec, const operators::LocalBox& domain) {
     const glm::ivec3 res = spec.resolution;
     const glm::vec3 lo(domain.lo), hi(domain.hi);
     const shader::OperatorParams params = operators::sampledParams(spec.params, domain, res);
+    // A sample within the margin beyond a cut may show part of the material
+    // (operator_sample.h, resolve).
+    const auto margin = static_cast<float>(operators::cutMarginCap(spec, domain));
     std::vector<Texel> texels(std::size_t(res.x) * res.y * res.z);
     std::size_t i = 0;
     for (int z = 0; z < res.z; ++z)
@@ -26,7 +29,7 @@ std::vector<Texel> mapTexels(const OperatorSpec& spec, const operators::LocalBox
             for (int x = 0; x < res.x; ++x, ++i) {
                 const glm::vec3 q = glm::mix(lo, hi, (glm::vec3(x, y, z) + 0.5f) / glm::vec3(res));
                 const glm::vec4 b = shader::operatorBackward(q, params);
-                texels[i] = {glm::vec3(b) - q, b.w};
+                texels[i] = {glm::vec3(b) - q, b.w + margin};
             }
     return texels;
 }
