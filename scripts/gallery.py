@@ -169,6 +169,21 @@ build/cutaway render scenes/fig3_surface_ct_head.json --set /camera/fov=12 \
   --set '/camera/orbit/target=[0,10,95]' --set '/render/size=[256,256]' --png \
   --set /render/quality=draft
 ```
+
+## A cut's edge, each ray alone and over the pixel's footprint
+
+![Figure 3(a)'s flap, close up, its cut decided by each pixel's ray alone](gallery/cut_edge_before.png)
+![The same with the default coverage over each pixel's footprint](gallery/cut_edge_after.png)
+
+Figure 3(a)'s flap close up: on the left `/render/cut_antialias` 0, where each pixel's ray alone
+decides the cut and the flap's edges step from pixel to pixel; on the right the default, the cut
+taken over each pixel's footprint ([quality.md](quality.md#antialiased-cuts)). 256 x 256:
+
+```sh
+build/cutaway render scenes/fig3_axis_ct_head.json --set /camera/fov=12 \
+  --set '/camera/orbit/target=[0,10,95]' --set '/render/size=[256,256]' --png \
+  --set /render/cut_antialias=0
+```
 """
 
 
