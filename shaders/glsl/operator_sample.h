@@ -101,13 +101,6 @@ float featureFiltered(int slot, vec3 at) {
     return weighTexels(t.f, near, far);
 }
 
-// The feature field's texel at `voxel`: loaded (featureTexel) or fetched
-// from `feature`, as featureLoaded says for `mode`.
-float featureVoxel(sampler3D feature, int slot, int mode, ivec3 voxel) {
-    if (featureLoaded(mode)) return featureTexel(slot, voxel);
-    return texelFetch(feature, voxel, 0).r;
-}
-
 // The feature field (r: DT or M; g: the value moved material reads) at
 // feature coordinate `at` by /render/filter "cubic": Catmull-Rom over the
 // 4^3 texels around it, held to the range of its cell's eight as volumeAt's
@@ -160,21 +153,26 @@ float maskAt(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc
     return segmentMask(f, maskInside(texelFetch(feature, voxel, 0).r));
 }
 
-// The feature field's unit gradient (into the feature) at the voxel nearest
-// to tc, by central differences over its neighbours: the field stores no
-// gradient (2 bytes a voxel instead of 8). Six texel reads cost about what the
-// RGBA16F gradient's one filtered fetch did on lavapipe; six filtered fetches
-// (a gradient that varies within a voxel) made an operator frame 30 % slower.
+// The feature field's unit gradient (into the feature) at tc, by central
+// differences of the filtered field a voxel either side: the field stores no
+// gradient (2 bytes a voxel instead of 8). Taken at the voxel nearest to tc
+// (six texel reads, the cost of one filtered fetch on lavapipe) it was
+// constant over each voxel, and the light on a flap's underside and on the
+// surface it bares showed the voxels as a lattice; six filtered fetches cost
+// whole processes of the aligned gallery scenes 1.0-1.2x (docs/quality.md).
 vec3 featureDirection(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc) {
     ivec3 dims = featureLoaded(mode) ? featureImageSize(slot) : textureSize(feature, 0);
-    ivec3 v = clamp(ivec3(floor(featureTcOf(op, tc) * vec3(dims))), ivec3(0), dims - 1);
-    ivec3 lo = max(v - 1, ivec3(0)), hi = min(v + 1, dims - 1);
-    vec3 below = vec3(featureVoxel(feature, slot, mode, ivec3(lo.x, v.y, v.z)),
-                      featureVoxel(feature, slot, mode, ivec3(v.x, lo.y, v.z)),
-                      featureVoxel(feature, slot, mode, ivec3(v.x, v.y, lo.z)));
-    vec3 above = vec3(featureVoxel(feature, slot, mode, ivec3(hi.x, v.y, v.z)),
-                      featureVoxel(feature, slot, mode, ivec3(v.x, hi.y, v.z)),
-                      featureVoxel(feature, slot, mode, ivec3(v.x, v.y, hi.z)));
+    vec3 at = featureTcOf(op, tc);
+    vec3 h = 1.0 / vec3(dims);
+    vec3 below, above;
+    for (int i = 0; i < 3; ++i) {
+        vec3 d = vec3(0.0);
+        d[i] = h[i];
+        below[i] = featureLoaded(mode) ? featureFiltered(slot, at - d)
+                                       : textureLod(feature, at - d, 0.0).r;
+        above[i] = featureLoaded(mode) ? featureFiltered(slot, at + d)
+                                       : textureLod(feature, at + d, 0.0).r;
+    }
     return featureGradientOf(below, above, op.featureScale.xyz);
 }
 
