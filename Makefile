@@ -52,7 +52,7 @@ test: build
 # scene many ways and run no host code the other sanitized tests do not
 # (`make test` runs them): under ASan they took 20-120 s each, 4 minutes of
 # test time in all.
-SANITIZE_SKIP = OperatorRegionsRender.SkippingChangesNoPixel|StorageFetch.RendersAsTheSampledTextureDoes|RaycastOperators.MatchSlicingForEveryKindAndAlignment|CubicFilterRender.BothMethodsTakeTheSameSamples|Refine.SubSlabsComeCloserToTheConvergedPicture
+SANITIZE_SKIP = OperatorRegionsRender.SkippingChangesNoPixel|StorageFetch.RendersAsTheSampledTextureDoes|RaycastOperators.MatchSlicingForEveryKindAndAlignment|CubicFilterRender.BothMethodsTakeTheSameSamples|Refine.SubSlabsComeCloserToTheConvergedPicture|CutAntialias.ASlantedCutHasAStraightEdge
 SANITIZE_BUILD ?= build-sanitize
 SANITIZE_ENV = UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 test-sanitize: deps
