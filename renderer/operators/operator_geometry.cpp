@@ -31,13 +31,24 @@ LocalBox deformedBounds(const shader::OperatorParams& params, glm::ivec3 resolut
     return box;
 }
 
+namespace {
+
+// The coarsest texel of a map with `resolution` texels over `box`, in units
+// of w: the peeler's frame of equal units (x and y times X and Y), the
+// others' local frame.
+double coarsestTexel(const shader::OperatorParams& params, const LocalBox& box,
+                     glm::ivec3 resolution) {
+    glm::dvec3 texel = (box.hi - box.lo) / glm::dvec3(resolution);
+    if (params.kind.x == CW_OP_PEELER) texel *= glm::dvec3(params.b.z, params.b.w, 1.0);
+    return std::max({texel.x, texel.y, texel.z});
+}
+
+} // namespace
+
 shader::OperatorParams sampledParams(const shader::OperatorParams& params, const LocalBox& box,
                                      glm::ivec3 resolution) {
-    const glm::dvec3 texel = (box.hi - box.lo) / glm::dvec3(resolution);
     shader::OperatorParams p = params;
-    // The peeler's gap is in its frame of equal units (x and y times X and Y).
-    if (p.kind.x == CW_OP_PEELER)
-        p.b.y = static_cast<float>(std::max({texel.x * p.b.z, texel.y * p.b.w, texel.z}));
+    if (p.kind.x == CW_OP_PEELER) p.b.y = static_cast<float>(coarsestTexel(p, box, resolution));
     return p;
 }
 
@@ -48,9 +59,7 @@ double cutSlope(const OperatorSpec& op) {
 }
 
 double cutMarginCap(const OperatorSpec& op, const LocalBox& domain) {
-    glm::dvec3 texel = (domain.hi - domain.lo) / glm::dvec3(op.resolution);
-    if (op.type == OperatorType::Peeler) texel *= glm::dvec3(op.params.b.z, op.params.b.w, 1.0);
-    return std::max({texel.x, texel.y, texel.z});
+    return coarsestTexel(op.params, domain, op.resolution); // the peeler's gap (sampledParams)
 }
 
 std::array<glm::dvec3, 8> WorldBox::corners() const {

@@ -182,12 +182,13 @@ float footprintMm(vec3 world) {
     return u.termination.y + u.termination.z * max(dot(world - u.eye.xyz, u.viewDir.xyz), 0.0);
 }
 
-// How far beyond the cut (in units of w) a sample at `world` may still show
+// How far beyond the cut (in units of w) a sample of footprint `footprint`
+// (footprintMm) may still show
 // part of the material: half the most w can spread over the footprint on a
 // surface seen down to about 15 degrees (cutCovered), at most a texel of the
 // map (OperatorUniforms.mapLo.w).
-float cutMargin(OperatorUniforms op, vec3 world) {
-    return min(2.0 * footprintMm(world) * op.band.w, op.mapLo.w);
+float cutMargin(OperatorUniforms op, float footprint) {
+    return min(2.0 * footprint * op.band.w, op.mapLo.w);
 }
 
 struct Resolved {
@@ -213,7 +214,7 @@ Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
     vec4 p0 = probe(op, map, world);
     vec3 tc0 = toTexture(p0.xyz);
     vec3 tcPrime = toTexture(world);
-    float margin = cutMargin(op, world);
+    float margin = cutMargin(op, footprintMm(world));
     bool p0Valid = p0.w > -margin && inVolume(tc0);
     bool primeIn = inVolume(tcPrime);
     float f0, fPrime, moving0, movingPrime;
@@ -439,14 +440,14 @@ vec4 cutCovered(OperatorUniforms op, Slab s, vec4 c, vec3 cut, vec3 ray, vec4 su
     facing = facing < 0.0 ? min(facing, -0.05) : max(facing, 0.05);
     vec3 g = cut - surface.xyz * (surface.w * dot(cut, ray) / facing);
     vec3 across = g - dot(g, ray) * ray;
-    float half_ = 0.5 * min(footprint * length(across), 2.0 * cutMargin(op, world));
+    float half_ = 0.5 * min(footprint * length(across), 2.0 * cutMargin(op, footprint));
     if (min(s.wNear, s.wFar) >= half_) return c;
     float spread = max(2.0 * half_, 1e-6);
     float near = s.wNear + half_, far = s.wFar + half_;
     float hi = max(near, far), lo = min(near, far);
     if (hi <= 0.0) return vec4(0.0);
     // The slab's opacity over the part where the share is above 0.
-    float alpha = correctOpacity(c.a, lo >= 0.0 ? 1.0 : hi / (hi - lo));
+    float alpha = correctOpacity(c.a, keptFraction(vec2(hi, lo), 1.0));
     float mean = bandMean(max(lo, 0.0), hi, spread);
     float atNear = clamp(near / spread, 0.0, 1.0);
     float added = max(clamp(far / spread, 0.0, 1.0) - atNear, 0.0) / max(1.0 - atNear, 1e-3);
