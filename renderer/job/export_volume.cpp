@@ -61,13 +61,14 @@ Exported exportVolume(const Scene& scene, bool withLabels, int oversample) {
                 featureFieldCpu(volume, labels.get(), op));
         return field;
     };
+    // Where labels classify the render, a segment's voxels never move.
+    const bool classifiedByLabels = scene.labels && !scene.labelTransfers.empty();
     const auto deform = [&](const operators::PlacedVolume& in, float emptyValue,
                             operators::Sampling sampling) {
+        const operators::Resampling how{sampling, classifiedByLabels, oversample};
         return resamplesSequentially
-                   ? operators::resampleSequentially(in, scene.operators, emptyValue, fieldFor,
-                                                     sampling, oversample)
-                   : operators::resampleDeformed(in, scene.operators, emptyValue, fieldFor,
-                                                 sampling, oversample);
+                   ? operators::resampleSequentially(in, scene.operators, emptyValue, fieldFor, how)
+                   : operators::resampleDeformed(in, scene.operators, emptyValue, fieldFor, how);
     };
     if (!resamplesSequentially) operators::checkNoOverlap(scene.operators);
     // The scan moves into place unless it is also the label volume.

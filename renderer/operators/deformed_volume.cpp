@@ -63,12 +63,14 @@ struct Placed {
     const OperatorSpec* spec;
     WorldBox box;
     glm::dmat4 worldToLocal;
-    FeatureField field; // on the input's grid; null for axis alignment
+    FeatureField field;             // on the input's grid; null for axis alignment
+    bool keepSegmentVoxels = false; // Resampling::keepSegmentVoxels
 };
 
 // The feature mask M at a point of the input's grid (maskAt in the shader's
-// operator_sample.h): 0 for axis alignment.
-float maskAt(const Placed& op, const Volume& grid, glm::dvec3 voxel) {
+// operator_sample.h): 0 for axis alignment. With `keepVoxels` every voxel of
+// a segment counts as feature.
+float maskAt(const Placed& op, const Volume& grid, glm::dvec3 voxel, bool keepVoxels) {
     if (!op.field) return 0.0f;
     const std::vector<float>& field = *op.field;
     const float f = static_cast<float>(trilinear(
@@ -76,6 +78,7 @@ float maskAt(const Placed& op, const Volume& grid, glm::dvec3 voxel) {
     const Alignment& a = op.spec->alignment;
     if (a.mode == AlignmentMode::Surface)
         return shader::surfaceMask(f, static_cast<float>(a.depth), static_cast<float>(a.band));
+    if (!keepVoxels) return f;
     const glm::ivec3 nearest = nearestVoxel(grid.dims, voxel);
     return shader::segmentMask(f, field[grid.index(nearest.x, nearest.y, nearest.z)] >= 0.5f);
 }
@@ -92,30 +95,31 @@ namespace {
 // resampleDeformed over operators [first, first + count): `fieldFor` sees
 // references into the caller's own list.
 PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
-                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling,
-                      int oversample);
+                      float emptyValue, const FeatureFieldMaker& fieldFor, const Resampling& how);
 
 } // namespace
 
 PlacedVolume resampleSequentially(const PlacedVolume& in,
                                   const std::vector<OperatorSpec>& operators, float emptyValue,
-                                  const FeatureFieldMaker& fieldFor, Sampling sampling,
-                                  int oversample) {
+                                  const FeatureFieldMaker& fieldFor, const Resampling& how) {
     if (operators.empty()) return in;
     // Only the last step takes the finer grid: the steps before it keep the
     // scan's, as the render's own resampling does.
-    const auto step = [&](std::size_t i) { return i + 1 == operators.size() ? oversample : 1; };
-    PlacedVolume current = resample(in, &operators[0], 1, emptyValue, fieldFor, sampling, step(0));
+    const auto step = [&](std::size_t i) {
+        Resampling h = how;
+        if (i + 1 < operators.size()) h.oversample = 1;
+        return h;
+    };
+    PlacedVolume current = resample(in, &operators[0], 1, emptyValue, fieldFor, step(0));
     for (std::size_t i = 1; i < operators.size(); ++i)
-        current = resample(current, &operators[i], 1, emptyValue, fieldFor, sampling, step(i));
+        current = resample(current, &operators[i], 1, emptyValue, fieldFor, step(i));
     return current;
 }
 
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
                               float emptyValue, const FeatureFieldMaker& fieldFor,
-                              Sampling sampling, int oversample) {
-    return resample(in, operators.data(), operators.size(), emptyValue, fieldFor, sampling,
-                    oversample);
+                              const Resampling& how) {
+    return resample(in, operators.data(), operators.size(), emptyValue, fieldFor, how);
 }
 
 namespace {
@@ -155,8 +159,9 @@ PlacedVolume outputGrid(const PlacedVolume& in, glm::dvec3 lo, glm::dvec3 hi, Sa
 }
 
 PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::size_t count,
-                      float emptyValue, const FeatureFieldMaker& fieldFor, Sampling sampling,
-                      int oversample) {
+                      float emptyValue, const FeatureFieldMaker& fieldFor, const Resampling& how) {
+    const Sampling sampling = how.sampling;
+    const int oversample = how.oversample;
     if (oversample < 1) throw std::invalid_argument("resampleDeformed: oversample below 1");
     const Volume& volume = in.volume;
     std::vector<Placed> placed;
@@ -170,7 +175,8 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
             if (!field || field->size() != volume.voxelCount())
                 throw std::logic_error("resampleDeformed: a feature field off the volume's grid");
         }
-        placed.push_back({&op, box, glm::inverse(op.localToWorld), std::move(field)});
+        placed.push_back({&op, box, glm::inverse(op.localToWorld), std::move(field),
+                          how.keepSegmentVoxels || sampling == Sampling::Nearest});
         // Material moves out of the operator's own box V_T: one that misses
         // the volume moves none, and does not grow the grid.
         if (!intersects(WorldBox{op.localToWorld, {}}, volumeBox)) continue;
@@ -225,8 +231,9 @@ PlacedVolume resample(const PlacedVolume& in, const OperatorSpec* first, std::si
                         in, glm::dvec3(op.spec->localToWorld * glm::dvec4(glm::vec3(b), 1.0)));
                     const bool p0Valid = b.w > 0.0f && p0.inside;
                     const int which = shader::featureCase(
-                        p0Valid, p0Valid ? maskAt(op, volume, p0.voxel) : 0.0f, p.inside,
-                        p.inside ? maskAt(op, volume, p.voxel) : 0.0f);
+                        p0Valid,
+                        p0Valid ? maskAt(op, volume, p0.voxel, op.keepSegmentVoxels) : 0.0f,
+                        p.inside, p.inside ? maskAt(op, volume, p.voxel, true) : 0.0f);
                     if (which == CW_CASE_TRANSFORMED) {
                         p = p0;
                         if (op.spec->alignment.mode == AlignmentMode::Segment)

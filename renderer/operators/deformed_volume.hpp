@@ -42,6 +42,20 @@ enum class Sampling {
     Nearest    ///< the nearest voxel's stored number, in the input's type (labels)
 };
 
+/// How resampleDeformed reads the input, and at what grid.
+struct Resampling {
+    Sampling sampling = Sampling::Trilinear;
+    /// No voxel of a segment-aligned operator's segment leaves with the
+    /// operator (shared/feature.h segmentMask), as where labels classify the
+    /// frame; otherwise material leaves unless the smoothed segment holds it
+    /// (it crosses 0.5 between voxels), as the renderer's value-classified
+    /// frames do. A point of the segment's voxels stays either way. Nearest
+    /// sampling (labels) always keeps them.
+    bool keepSegmentVoxels = false;
+    /// K > 1: a grid K times finer along each axis (see resampleDeformed).
+    int oversample = 1;
+};
+
 /// Resamples `in` deformed by `operators` (which must not overlap) on a grid
 /// with its spacing that covers it and every operator's material (so a lifted
 /// flap is kept). Voxels in a cut, or with no pre-image in the volume, get
@@ -50,20 +64,20 @@ enum class Sampling {
 /// `origin` moves with the grid along `in`'s directions, which it keeps). `fieldFor` makes the
 /// feature fields of the operators that are not axis-aligned, on `in`'s grid; without it every
 /// operator is evaluated as axis-aligned.
-/// With `oversample` K > 1 the grid's spacing is `in`'s divided by K over the
+/// With `how.oversample` K > 1 the grid's spacing is `in`'s divided by K over the
 /// same box (each input voxel's box holds K^3 output voxels), so cut faces
 /// are resolved K times finer; untouched voxels are then trilinear samples.
 PlacedVolume resampleDeformed(const PlacedVolume& in, const std::vector<OperatorSpec>& operators,
                               float emptyValue, const FeatureFieldMaker& fieldFor = {},
-                              Sampling sampling = Sampling::Trilinear, int oversample = 1);
+                              const Resampling& how = {});
 
 /// Sequential composition (the paper's "save the intermediate volume"): each
 /// operator applies to the volume the previous ones left (and an aligned
 /// one's feature field is made from that volume).
-/// With `oversample`, only the last operator's step takes the finer grid.
+/// With `how.oversample`, only the last operator's step takes the finer grid.
 PlacedVolume resampleSequentially(const PlacedVolume& in,
                                   const std::vector<OperatorSpec>& operators, float emptyValue,
                                   const FeatureFieldMaker& fieldFor = {},
-                                  Sampling sampling = Sampling::Trilinear, int oversample = 1);
+                                  const Resampling& how = {});
 
 } // namespace cutaway::operators

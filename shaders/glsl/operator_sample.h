@@ -133,9 +133,10 @@ vec3 featureTcOf(OperatorUniforms op, vec3 tc) {
 
 // M at texture coordinate tc (0 for axis alignment); `f` receives the
 // feature field there (DT or M), which featureGradient reads again, and
-// `moving` the value moved material reads there (segment alignment).
-float maskAt(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc, out float f,
-             out float moving) {
+// `moving` the value moved material reads there (segment alignment). With
+// `keepVoxels` every voxel of a segment counts as feature (segmentMask).
+float maskAt(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc, bool keepVoxels,
+             out float f, out float moving) {
     f = 0.0;
     moving = 0.0;
     if (mode == CW_ALIGN_AXIS) return 0.0;
@@ -148,6 +149,7 @@ float maskAt(OperatorUniforms op, sampler3D feature, int slot, int mode, vec3 tc
     f = texel.r;
     if (mode == CW_ALIGN_SURFACE) return surfaceMask(f, op.align.y, op.align.z);
     moving = texel.g;
+    if (!keepVoxels) return f;
     ivec3 dims = textureSize(feature, 0);
     ivec3 voxel = clamp(ivec3(floor(at * vec3(dims))), ivec3(0), dims - 1);
     return segmentMask(f, maskInside(texelFetch(feature, voxel, 0).r));
@@ -218,8 +220,14 @@ Resolved resolve(OperatorUniforms op, sampler3D map, sampler3D feature, int slot
     bool p0Valid = p0.w > -margin && inVolume(tc0);
     bool primeIn = inVolume(tcPrime);
     float f0, fPrime, moving0, movingPrime;
-    float m0 = maskAt(op, feature, slot, mode, tc0, f0, moving0);
-    float mPrime = maskAt(op, feature, slot, mode, tcPrime, fPrime, movingPrime);
+    // A point stays where a voxel of the segment is nearest, as outside the
+    // box (no seam at its faces). Its material leaves with the operator
+    // unless the smoothed segment holds it, so a flap's underside follows the
+    // segment's smooth 0.5 surface, not its voxels' staircase (a lattice in
+    // the light); where labels classify, no voxel of the segment may leave,
+    // or it would take the segment's colours along.
+    float m0 = maskAt(op, feature, slot, mode, tc0, cwByLabel, f0, moving0);
+    float mPrime = maskAt(op, feature, slot, mode, tcPrime, true, fPrime, movingPrime);
     Resolved r;
     r.which = featureCase(p0Valid, p0Valid ? m0 : 0.0, primeIn, primeIn ? mPrime : 0.0);
     bool masked = r.which == CW_CASE_MASKED;

@@ -44,6 +44,10 @@ CW_FUNC float surfaceMask(float dt, float tau, float delta) {
 // sample of the smoothed segment, `nearestInside` whether the nearest voxel
 // belongs to the segment. A voxel of the segment always counts as feature, so
 // a sample classified by the segment's label never moves with the operator.
+// At p0, where material may leave, only where labels classify: elsewhere the
+// mask there is `smoothed` alone, whose 0.5 surface is smooth where this rule
+// draws the voxels' staircase, which the light showed as a lattice on a
+// flap's underside.
 CW_FUNC float segmentMask(float smoothed, bool nearestInside) {
     return max(smoothed, nearestInside ? 0.5f : 0.0f);
 }
