@@ -37,7 +37,8 @@ GALLERY = [
     ("fig8_dilator_lens_brain", "Figure 8: a dilator as a volumetric lens",
      "A spherical lens of magnification 2 on `brain_t1`, its box drawn as a glyph.", None),
     ("fig9_chest", "Figure 9: a retractor opening a torso, pliers pushing aside",
-     "`chest_ct` with a retractor and pliers, composited side by side.", None),
+     "`chest_ct`: a retractor spreads the chest wall, its cut faces capped in red, over the "
+     "heart; pliers push the aorta aside.", None),
     ("fig10_frog_tools", "Figure 10: retractor and pliers on the frog, with tool meshes",
      "The retractor keeps the organs (segment-aligned) while the rest spreads; pliers pull "
      "an eye; glTF retractor blades and forceps move with their operators.", None),
