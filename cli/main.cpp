@@ -6,7 +6,7 @@
 //   cutaway validate SCENE [--set ...]
 //   cutaway export SCENE [--frame N] -o OUT.nrrd [--labels-output L.nrrd] [--set ...]
 //                  [--oversample K] [--raw]
-//   cutaway info FILE
+//   cutaway info FILE [--series S]
 //   cutaway devices
 //
 // Exit codes: 0 success, 1 runtime failure, 2 bad input or usage;
@@ -25,6 +25,7 @@
 #include "progress.hpp"
 #include "scene/animation.hpp"
 #include "scene/scene.hpp"
+#include "volume/dicom.hpp"
 #include "volume/volume.hpp"
 #include "volume_info.hpp"
 
@@ -237,8 +238,23 @@ int runValidate(const RenderArgs& args) {
     return 0;
 }
 
-int runInfo(const std::string& file) {
-    std::fputs(cutaway::cli::describeVolume(cutaway::readVolume(file), file).c_str(), stdout);
+// A DICOM path lists its series; the one it names (or the only one, or
+// --series) is described as any volume is.
+int runInfo(const std::string& file, const std::string& series) {
+    if (!cutaway::isDicomPath(file)) {
+        if (!series.empty())
+            throw cutaway::InputError("--series: " + file + " is not a DICOM file or folder");
+        std::fputs(cutaway::cli::describeVolume(cutaway::readVolume(file), file).c_str(), stdout);
+        return 0;
+    }
+    const cutaway::DicomListing listing = cutaway::listDicom(file);
+    std::printf("%s\n%s", file.c_str(), cutaway::describeSeries(listing).c_str());
+    if (series.empty() && listing.series.size() > 1 && listing.namedUid.empty()) {
+        std::printf("(give --series NUMBER|UID|DESCRIPTION to describe one)\n");
+        return 0;
+    }
+    std::fputs(cutaway::cli::describeVolume(cutaway::readDicom(file, series), file).c_str(),
+               stdout);
     return 0;
 }
 
@@ -333,8 +349,12 @@ int main(int argc, char** argv) {
     exportCommand->add_flag("--raw", exportArgs.raw, "Raw encoding instead of gzip");
 
     std::string infoFile;
-    auto* info = app.add_subcommand("info", "Describe a volume file (NRRD, NIfTI)");
-    info->add_option("file", infoFile, "Volume file")->required();
+    auto* info = app.add_subcommand("info", "Describe a volume file (NRRD, NIfTI, DICOM)");
+    info->add_option("file", infoFile, "Volume file, or a DICOM folder, DICOMDIR or file")
+        ->required();
+    std::string infoSeries;
+    info->add_option("--series", infoSeries,
+                     "The DICOM series to describe: its number, UID or description");
 
     auto* devices = app.add_subcommand("devices", "List the Vulkan devices");
 
@@ -349,7 +369,7 @@ int main(int argc, char** argv) {
         if (render->parsed()) return runRender(renderArgs);
         if (validate->parsed()) return runValidate(validateArgs);
         if (exportCommand->parsed()) return runExport(exportArgs);
-        if (info->parsed()) return runInfo(infoFile);
+        if (info->parsed()) return runInfo(infoFile, infoSeries);
         if (devices->parsed()) return runDevices();
     } catch (const cutaway::InputError& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";

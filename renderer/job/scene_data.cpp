@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "operators/deformed_volume.hpp"
+#include "volume/dicom.hpp"
 #include "volume/phantom.hpp"
 
 #include <algorithm>
@@ -18,6 +19,8 @@ Volume loadSceneVolume(const Scene& scene, std::size_t* nonFinite) {
         volume = makePhantom(src.phantom, src.phantomSize).values;
     else if (src.raw)
         volume = readRaw(src.file, *src.raw);
+    else if (!src.series.empty())
+        volume = readDicom(src.file, src.series);
     else
         volume = readVolume(src.file);
     if (src.spacing) volume.spacing = *src.spacing;

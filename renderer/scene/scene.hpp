@@ -23,11 +23,12 @@ namespace cutaway {
 
 /// /volume: where the scalar field comes from. Exactly one of file / phantom.
 struct VolumeSource {
-    std::filesystem::path file;        ///< resolved against the scene's folder; empty for a phantom
-    std::optional<RawLayout> raw;      ///< /volume/raw: layout of a headerless file
-    std::string phantom;               ///< /volume/phantom: "head" or "orange"
-    glm::ivec3 phantomSize{128};       ///< /volume/size (phantoms only), each in [8, 1024]
-    std::optional<glm::dvec3> spacing; ///< /volume/spacing: overrides the file's, mm, > 0
+    std::filesystem::path file;   ///< resolved against the scene's folder; empty for a phantom
+    std::optional<RawLayout> raw; ///< /volume/raw: layout of a headerless file
+    std::string series;           ///< /volume/series: a DICOM series' number, UID or description
+    std::string phantom;          ///< /volume/phantom: "head" or "orange"
+    glm::ivec3 phantomSize{128};  ///< /volume/size (phantoms only), each in [8, 1024]
+    std::optional<glm::dvec3> spacing;           ///< /volume/spacing: overrides the file's, mm, > 0
     std::optional<std::array<double, 2>> window; ///< /volume/window: [lo, hi] values, lo < hi
     bool operator==(const VolumeSource&) const = default;
 };

@@ -48,9 +48,10 @@ void parseMeshes(JsonReader& root, std::vector<MeshSpec>& meshes, std::size_t op
 glm::dmat4 translateRotate(glm::dvec3 translate, glm::dvec3 rotateDeg);
 
 /// Resolves the path at `key` against `baseDir` and reports a missing file or
-/// one that is not a regular file. Returns the resolved path (empty if absent).
+/// one that is not a regular file (nor a folder, with `folders`). Returns the
+/// resolved path (empty if absent).
 std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
-                                       const std::filesystem::path& baseDir);
+                                       const std::filesystem::path& baseDir, bool folders = false);
 
 /// Reads a direction: 3 numbers in [-kMaxCoordinate, kMaxCoordinate], not all zero.
 std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required);

@@ -1,6 +1,7 @@
 // The /volume and /transfer sections of a scene document.
 #include "io/input_file.hpp"
 #include "scene/scene_sections.hpp"
+#include "volume/dicom.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -67,10 +68,28 @@ RawLayout parseRaw(JsonReader& reader) {
     return raw;
 }
 
+/// /volume/series: which series of a DICOM folder (string or integer: its
+/// number, UID or description). Only with a DICOM `file`.
+void parseSeries(JsonReader& reader, VolumeSource& volume, bool dicom) {
+    const nlohmann::json* series = reader.find("series");
+    if (!series) return;
+    if (!dicom) {
+        reader.error("series", "only allowed with a DICOM file, folder or DICOMDIR as \"file\"");
+    } else if (series->is_string() && !series->get<std::string>().empty()) {
+        volume.series = series->get<std::string>();
+    } else if (series->is_number_integer() && series->get<std::int64_t>() >= 0) {
+        volume.series = std::to_string(series->get<std::int64_t>());
+    } else {
+        reader.expected(reader.pointerOf("series"),
+                        "a series number (integer >= 0), UID or description (a non-empty string)",
+                        *series);
+    }
+}
+
 } // namespace
 
 std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
-                                       const std::filesystem::path& baseDir) {
+                                       const std::filesystem::path& baseDir, bool folders) {
     const auto file = reader.string(key);
     if (!file) return {};
     // No file has such a name: the system would look up a shorter one, or none.
@@ -85,6 +104,8 @@ std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
     struct stat status {};
     if (::stat(path.c_str(), &status) != 0)
         reader.error(key, "no such file: " + path.string());
+    else if (folders && S_ISDIR(status.st_mode))
+        return path;
     else if (const char* kind = nonRegularKind(status.st_mode))
         reader.error(key, std::string("not a regular file (it is ") + kind + "): " + path.string());
     return path;
@@ -94,9 +115,12 @@ std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
 /// `phantom` is required.
 ///
 ///  * file     string, path, required unless `phantom` is given
-///             A .nrrd, .nhdr, .nii or .nii.gz file, or a headerless file laid
-///             out as `raw` says. Relative paths are relative to the scene
-///             file's folder. The file must exist.
+///             A .nrrd, .nhdr, .nii or .nii.gz file, a DICOM folder, DICOMDIR
+///             or file of a series (volume/dicom.hpp), or a headerless file
+///             laid out as `raw` says. Relative paths are relative to the
+///             scene file's folder. The file must exist.
+///  * series   string or integer, default none: the DICOM series to read (its
+///             number, UID or description). Only with a DICOM `file`.
 ///  * phantom  string, "head" or "orange", required unless `file` is given
 ///             A built-in procedural volume (uint8 values, 1 mm voxels).
 ///  * size     [integer x3], voxels, each in [8, 1024], default [128, 128, 128]
@@ -116,16 +140,20 @@ void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem
                          (hasFile ? "both" : "neither"));
     }
 
-    volume.file = readExistingFile(reader, "file", baseDir);
+    volume.file = readExistingFile(reader, "file", baseDir, !reader.has("raw"));
     std::error_code ec; // a name the system refuses (too long, ...) was reported just above
+    // A missing file was reported just above: its series is not refused too.
+    const bool dicom = !volume.file.empty() && !reader.has("raw") &&
+                       (isDicomPath(volume.file) || !std::filesystem::exists(volume.file, ec));
     if (!volume.file.empty() && std::filesystem::is_regular_file(volume.file, ec)) {
-        if (!reader.has("raw") && !hasVolumeExtension(volume.file)) {
+        if (!reader.has("raw") && !hasVolumeExtension(volume.file) && !dicom) {
             reader.expected(reader.pointerOf("file"),
-                            "a .nrrd, .nhdr, .nii or .nii.gz file, or a \"raw\" layout for a "
-                            "headerless file",
+                            "a .nrrd, .nhdr, .nii or .nii.gz file, a DICOM file, folder or "
+                            "DICOMDIR, or a \"raw\" layout for a headerless file",
                             *reader.find("file"));
         }
     }
+    parseSeries(reader, volume, dicom);
     if (const auto phantom = reader.string("phantom", {kHead, kOrange})) volume.phantom = *phantom;
 
     if (reader.has("size") && hasFile && !hasPhantom) {

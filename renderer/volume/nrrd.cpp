@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "io/input_file.hpp"
 #include "volume/byte_order.hpp"
+#include "volume/dicom.hpp"
 #include "volume/gzip.hpp"
 #include "volume/io_util.hpp"
 #include "volume/nrrd_header.hpp"
@@ -442,6 +443,15 @@ Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name,
 
 std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path) {
     std::vector<std::filesystem::path> files{path};
+    if (isDicomPath(path)) {
+        try {
+            for (const DicomSeries& series : listDicom(path).series)
+                files.insert(files.end(), series.files.begin(), series.files.end());
+        } catch (const InputError&) {
+            // Reading the volume says what is wrong with it.
+        }
+        return files;
+    }
     const std::string name = detail::toLower(path.filename().string());
     if (!name.ends_with(".nrrd") && !name.ends_with(".nhdr")) return files;
     try {

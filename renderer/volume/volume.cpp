@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "io/input_file.hpp"
+#include "volume/dicom.hpp"
 #include "volume/io_util.hpp"
 
 #include <cmath>
@@ -198,13 +199,17 @@ bool endsWith(const std::string& text, std::string_view suffix) {
 } // namespace
 
 Volume readVolume(const std::filesystem::path& path) {
-    (void)InputFile(path, "volume"); // "no such file" before any talk of extensions
     const std::string name = detail::toLower(path.filename().string());
+    const bool named = endsWith(name, ".nrrd") || endsWith(name, ".nhdr") ||
+                       endsWith(name, ".nii") || endsWith(name, ".nii.gz");
+    if (!named && isDicomPath(path)) return readDicom(path);
+    (void)InputFile(path, "volume"); // "no such file" before any talk of extensions
     if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return readNrrd(path);
     if (endsWith(name, ".nii") || endsWith(name, ".nii.gz")) return readNifti(path);
-    throw InputError(path.string() + ": unsupported file extension '" + path.extension().string() +
-                     "' (supported: .nrrd, .nhdr, .nii, .nii.gz; headerless raw files need an "
-                     "explicit layout)");
+    throw InputError(
+        path.string() + ": unsupported file extension '" + path.extension().string() +
+        "' (supported: .nrrd, .nhdr, .nii, .nii.gz, DICOM files and folders; headerless "
+        "raw files need an explicit layout)");
 }
 
 } // namespace cutaway

@@ -474,6 +474,12 @@ void renderEveryFourthExample(const fs::path& dir, std::size_t part) {
             std::printf("skipped %s: %s not found\n", name.c_str(), CUTAWAY_SHARED_DATA);
             continue;
         }
+        // A series scripts/write_dicom.py writes (tests/cli/dicom_cli_test.cpp renders it).
+        if (text.find("out/dicom/") != std::string::npos) {
+            std::printf("skipped %s: its DICOM series is written by scripts/write_dicom.py\n",
+                        name.c_str());
+            continue;
+        }
         const fs::path out = dir / (files[i].stem().string() + "_####.exr");
         CommandResult r = runCutaway("render " + files[i].string() +
                                      " --size 40x32 --frames 0 -o " + out.string());

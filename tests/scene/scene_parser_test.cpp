@@ -286,7 +286,13 @@ TEST(SceneParser, MissingVolumeFileNamesPointerAndPath) {
                    dir.path() / "scenes");
     EXPECT_EQ(message, "scene.json: /volume/file: no such file: " +
                            (dir.path() / "data/none.nii.gz").string());
+    // A folder is a DICOM series' (read, and judged, when the volume loads);
+    // a headerless file's layout cannot describe one.
     EXPECT_EQ(parseError(json::parse(R"({"version": 1, "volume": {"file": "."}})"), dir.path()),
+              "");
+    EXPECT_EQ(parseError(json::parse(R"({"version": 1, "volume": {"file": ".",
+                  "raw": {"dims": [2, 2, 2], "type": "uint8"}}})"),
+                         dir.path()),
               "scene.json: /volume/file: not a regular file (it is a folder): " +
                   dir.path().string() + "/");
     // A name the system refuses to look up (found by fuzz_scene: it threw filesystem_error).
@@ -302,8 +308,8 @@ TEST(SceneParser, HeaderlessFilesNeedARawLayout) {
     dir.write("scan.raw", "x");
     EXPECT_EQ(
         parseError(json::parse(R"({"version": 1, "volume": {"file": "scan.raw"}})"), dir.path()),
-        "scene.json: /volume/file: expected a .nrrd, .nhdr, .nii or .nii.gz file, or a "
-        "\"raw\" layout for a headerless file, got \"scan.raw\"");
+        "scene.json: /volume/file: expected a .nrrd, .nhdr, .nii or .nii.gz file, a DICOM "
+        "file, folder or DICOMDIR, or a \"raw\" layout for a headerless file, got \"scan.raw\"");
     EXPECT_EQ(parseError(json::parse(R"({"version": 1, "volume": {"file": "scan.raw",
         "raw": {"dims": [1, 1, 1]}}})"),
                          dir.path()),

@@ -129,10 +129,14 @@ TEST_F(MalformedVolumes, MissingFilesFoldersAndUnknownExtensions) {
     std::filesystem::create_directories(path("folder.nii"));
     EXPECT_NE(inputError([&] { readVolume(path("folder.nii")); }).find("folder.nii"),
               std::string::npos);
-    const auto other = writeFile("scan.dcm", "DICM");
+    const auto other = writeFile("scan.mnc", "MINC");
     const std::string message = inputError([&] { readVolume(other); });
-    EXPECT_NE(message.find("scan.dcm"), std::string::npos) << message;
+    EXPECT_NE(message.find("scan.mnc"), std::string::npos) << message;
     EXPECT_NE(message.find(".nrrd"), std::string::npos) << "should list what is supported";
+    EXPECT_NE(message.find("DICOM"), std::string::npos) << "should list what is supported";
+    // A .dcm name is DICOM's: one that is not a DICOM image says so.
+    const auto dcm = writeFile("scan.dcm", "DICM");
+    EXPECT_EQ(inputError([&] { readVolume(dcm); }), dcm.string() + ": not a DICOM image");
 }
 
 TEST_F(MalformedVolumes, OnlyRegularFilesAreReadAndTheMessageSaysWhatTheOthersAre) {

@@ -1,0 +1,183 @@
+// Finding DICOM series: which files a path names, grouped by
+// SeriesInstanceUID through GDCM's Scanner (it reads each file's header up to
+// the tags asked for), and picking one.
+#include "core/error.hpp"
+#include "volume/dicom.hpp"
+#include "volume/io_util.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <gdcmDirectory.h>
+#include <gdcmMediaStorage.h>
+#include <gdcmReader.h>
+#include <gdcmScanner.h>
+#include <gdcmTag.h>
+#include <map>
+#include <sstream>
+
+namespace cutaway {
+namespace {
+
+namespace fs = std::filesystem;
+
+const gdcm::Tag kSeriesUid(0x0020, 0x000e);
+const gdcm::Tag kSeriesNumber(0x0020, 0x0011);
+const gdcm::Tag kSeriesDescription(0x0008, 0x103e);
+const gdcm::Tag kModality(0x0008, 0x0060);
+const gdcm::Tag kRows(0x0028, 0x0010);
+const gdcm::Tag kColumns(0x0028, 0x0011);
+const gdcm::Tag kSopClass(0x0008, 0x0016);
+
+// A tag's value as the scanner gives it, without DICOM's padding.
+std::string valueOf(const gdcm::Scanner& scanner, const std::string& file, const gdcm::Tag& tag) {
+    const char* v = scanner.GetValue(file.c_str(), tag);
+    if (!v) return {};
+    std::string s(v);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\0'))
+        s.pop_back();
+    return std::string(detail::trim(s));
+}
+
+bool hasPreamble(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    char magic[4] = {};
+    return in.seekg(128) && in.read(magic, 4) && std::string_view(magic, 4) == "DICM";
+}
+
+// A file that says it is DICOM (its preamble) and either is of a series and
+// an image class without Rows (the rest of it cut off), or cannot be read at
+// all: damaged, not foreign.
+bool damaged(const std::string& file, const std::string& uid, const std::string& sopClass) {
+    if (!hasPreamble(file)) return false;
+    if (!uid.empty() &&
+        gdcm::MediaStorage::IsImage(gdcm::MediaStorage::GetMSType(sopClass.c_str())))
+        return true;
+    gdcm::Reader reader;
+    reader.SetFileName(file.c_str());
+    return !reader.Read();
+}
+
+bool isDicomdir(const fs::path& path) {
+    return detail::toLower(path.filename().string()) == "dicomdir";
+}
+
+// The files to scan for `path`: a folder's, recursively; a DICOMDIR's
+// folder's; a single file's folder's (not recursively).
+std::vector<std::string> candidateFiles(const fs::path& path) {
+    std::error_code ec;
+    const bool folder = fs::is_directory(path, ec);
+    const fs::path root = folder ? path : path.parent_path().empty() ? "." : path.parent_path();
+    gdcm::Directory directory;
+    directory.Load(root.string(), folder || isDicomdir(path));
+    std::vector<std::string> files = directory.GetFilenames();
+    std::sort(files.begin(), files.end()); // the scan's order does not depend on the file system
+    return files;
+}
+
+int parsedCount(const std::string& text) {
+    std::int64_t v = 0;
+    return detail::parseInt(text, v) && v > 0 && v < (std::int64_t{1} << 30) ? int(v) : 0;
+}
+
+// Series by number (numerically where both are numbers), then UID.
+bool seriesBefore(const DicomSeries& a, const DicomSeries& b) {
+    std::int64_t na = 0, nb = 0;
+    const bool numbers = detail::parseInt(a.number, na) && detail::parseInt(b.number, nb);
+    if (numbers && na != nb) return na < nb;
+    if (!numbers && a.number != b.number) return a.number < b.number;
+    return a.uid < b.uid;
+}
+
+} // namespace
+
+bool isDicomPath(const fs::path& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) return true;
+    if (isDicomdir(path)) return true;
+    if (detail::toLower(path.extension().string()) == ".dcm") return true;
+    return fs::is_regular_file(path, ec) && hasPreamble(path);
+}
+
+DicomListing listDicom(const fs::path& path) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw InputError(path.string() + ": no such file or folder");
+    const std::vector<std::string> files = candidateFiles(path);
+    gdcm::Scanner scanner;
+    for (const gdcm::Tag& t :
+         {kSeriesUid, kSeriesNumber, kSeriesDescription, kModality, kRows, kColumns, kSopClass})
+        scanner.AddTag(t);
+    if (!files.empty() && !scanner.Scan(files))
+        throw InputError(path.string() + ": could not scan its files for DICOM series");
+    DicomListing listing;
+    std::map<std::string, DicomSeries> byUid;
+    for (const std::string& file : files) {
+        const std::string uid = valueOf(scanner, file, kSeriesUid);
+        // Not DICOM, or no image (a DICOMDIR, a structured report).
+        if (!scanner.IsKey(file.c_str()) || uid.empty() || valueOf(scanner, file, kRows).empty()) {
+            if (damaged(file, uid, valueOf(scanner, file, kSopClass)))
+                throw InputError(file + ": a DICOM image without its image (truncated or "
+                                        "damaged), or a DICOM file GDCM cannot read");
+            ++listing.ignored;
+            continue;
+        }
+        DicomSeries& s = byUid[uid];
+        if (s.files.empty()) {
+            s.uid = uid;
+            s.number = valueOf(scanner, file, kSeriesNumber);
+            s.description = valueOf(scanner, file, kSeriesDescription);
+            s.modality = valueOf(scanner, file, kModality);
+            s.dims = {parsedCount(valueOf(scanner, file, kColumns)),
+                      parsedCount(valueOf(scanner, file, kRows)), 0};
+        }
+        s.files.push_back(file);
+        s.dims.z = int(s.files.size());
+        if (!fs::is_directory(path, ec) && !isDicomdir(path) &&
+            fs::equivalent(fs::path(file), path, ec))
+            listing.namedUid = uid;
+    }
+    if (fs::is_regular_file(path, ec) && !isDicomdir(path) && listing.namedUid.empty())
+        throw InputError(path.string() + ": not a DICOM image");
+    for (auto& [uid, s] : byUid)
+        listing.series.push_back(std::move(s));
+    std::sort(listing.series.begin(), listing.series.end(), seriesBefore);
+    if (listing.series.empty())
+        throw InputError(path.string() + ": no DICOM image found (" + std::to_string(files.size()) +
+                         " file(s) looked at)");
+    return listing;
+}
+
+std::string describeSeries(const DicomListing& listing) {
+    std::ostringstream out;
+    for (const DicomSeries& s : listing.series) {
+        out << "  series " << (s.number.empty() ? "-" : s.number) << "  "
+            << (s.description.empty() ? "(no description)" : "\"" + s.description + "\"")
+            << (s.modality.empty() ? "" : "  " + s.modality) << "  " << s.dims.x << " x "
+            << s.dims.y << " x " << s.dims.z << "  " << s.files.size() << " file(s)  uid " << s.uid
+            << "\n";
+    }
+    if (listing.ignored > 0)
+        out << "  (" << listing.ignored << " other file(s) passed over: not DICOM images)\n";
+    return out.str();
+}
+
+const DicomSeries& pickSeries(const DicomListing& listing, std::string_view selector,
+                              const fs::path& path) {
+    std::string wanted(selector);
+    if (wanted.empty() && listing.series.size() == 1) return listing.series.front();
+    if (wanted.empty() && !listing.namedUid.empty()) wanted = listing.namedUid;
+    std::vector<const DicomSeries*> hits;
+    for (const DicomSeries& s : listing.series)
+        if (s.uid == wanted || (!s.number.empty() && s.number == wanted) ||
+            (!s.description.empty() && detail::toLower(s.description) == detail::toLower(wanted)))
+            hits.push_back(&s);
+    if (hits.size() == 1) return *hits.front();
+    std::string why = wanted.empty() ? "holds " + std::to_string(listing.series.size()) +
+                                           " series; pick one with /volume/series (its number, "
+                                           "UID or description)"
+                      : hits.empty() ? "no series matches \"" + wanted + "\""
+                                     : std::to_string(hits.size()) + " series match \"" + wanted +
+                                           "\"; give the UID";
+    throw InputError(path.string() + ": " + why + ":\n" + describeSeries(listing));
+}
+
+} // namespace cutaway

@@ -1,0 +1,185 @@
+// DICOM series (volume/dicom.hpp), written by scripts/write_dicom.py (pydicom;
+// gdcmconv for JPEG lossless, gdcmgendir for a DICOMDIR) from a volume the
+// test makes, and read back to the voxel against it.
+#include "core/error.hpp"
+#include "volume/dicom.hpp"
+#include "volume_test_util.hpp"
+
+#include <cstdlib>
+#include <numbers>
+
+namespace cutaway::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr glm::ivec3 kDims{14, 12, 9};
+const glm::dvec3 kSpacing(0.8, 0.9, 1.5);
+const glm::dvec3 kOrigin(-100.0, -80.0, 40.0); // the script's default
+
+// Values a CT might hold (-1000 .. 1400), multiples of 4 so that every
+// rescale below stores them exactly, different along each axis.
+Volume source() {
+    Volume v = Volume::allocate(kDims, VoxelType::I16, kSpacing);
+    for (int z = 0; z < kDims.z; ++z)
+        for (int y = 0; y < kDims.y; ++y)
+            for (int x = 0; x < kDims.x; ++x) {
+                const std::int16_t value =
+                    std::int16_t(-1000 + 4 * ((x * 7 + y * 31 + z * 67) % 600));
+                std::memcpy(v.data.data() + v.index(x, y, z) * 2, &value, 2);
+            }
+    return v;
+}
+
+class Dicom : public VolumeFiles {
+protected:
+    // Writes source() as a series into `folder` (under the test's folder).
+    fs::path write(const std::string& folder, const std::string& options = {}) {
+        const fs::path nrrd = path("source.nrrd");
+        if (!fs::exists(nrrd)) writeNrrd(nrrd, source(), false);
+        const std::string command = "/usr/bin/python3 " + std::string(CUTAWAY_SOURCE_DIR) +
+                                    "/scripts/write_dicom.py " + nrrd.string() + " " +
+                                    path(folder).string() + " " + options + " > /dev/null";
+        EXPECT_EQ(std::system(command.c_str()), 0) << command;
+        return path(folder);
+    }
+};
+
+void expectSameValues(const Volume& read, const Volume& expected) {
+    ASSERT_EQ(read.dims, expected.dims);
+    std::size_t wrong = 0;
+    for (std::size_t i = 0; i < expected.voxelCount(); ++i)
+        wrong += read.value(i) != expected.value(i) ? 1 : 0;
+    EXPECT_EQ(wrong, 0u) << "voxels that differ from the source";
+}
+
+std::string messageOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+// File names and InstanceNumbers at random: the order comes from the
+// positions. The geometry is the series': LPS, the script's origin, the
+// pixel spacing and the spacing between positions.
+TEST_F(Dicom, ShuffledFileNamesReadInPositionOrder) {
+    const Volume v = readDicom(write("ct", "--shuffle"));
+    expectSameValues(v, source());
+    EXPECT_EQ(v.type, VoxelType::I16);
+    EXPECT_EQ(v.space, Space::LPS);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(v.spacing[a], kSpacing[a], 1e-5);
+        EXPECT_NEAR(v.origin[a], kOrigin[a], 1e-5);
+    }
+    EXPECT_EQ(v.direction, glm::dmat3(1.0));
+    // Control: the files' own order (by name) is not the slices' order.
+    std::vector<fs::path> names;
+    for (const auto& e : fs::directory_iterator(path("ct")))
+        names.push_back(e.path());
+    std::sort(names.begin(), names.end());
+    const Volume first = readDicom(names.front());
+    EXPECT_EQ(first.dims, kDims) << "one file of a series names its whole series";
+}
+
+// Stored as uint16 or int16 through RescaleSlope/Intercept: the physical
+// values come back, the stored type and the rescale kept.
+TEST_F(Dicom, SignedAndUnsignedPixelsWithARescale) {
+    const Volume u = readDicom(write("u", "--unsigned --slope 0.5 --intercept -1024"));
+    EXPECT_EQ(u.type, VoxelType::U16);
+    EXPECT_EQ(u.slope, 0.5);
+    EXPECT_EQ(u.inter, -1024.0);
+    expectSameValues(u, source());
+    const Volume s = readDicom(write("s", "--slope 4 --intercept 200"));
+    EXPECT_EQ(s.type, VoxelType::I16);
+    EXPECT_EQ(s.slope, 4.0);
+    expectSameValues(s, source());
+}
+
+// An oblique stack: the volume's directions are the rows', the columns' and
+// their normal, and the origin the first slice's position.
+TEST_F(Dicom, AnObliqueOrientationGivesTheDirections) {
+    const Volume v = readDicom(write("oblique", "--oblique 30 --shuffle"));
+    expectSameValues(v, source());
+    const double a = 30.0 * std::numbers::pi / 180.0;
+    const glm::dvec3 row(std::cos(a), std::sin(a), 0.0);
+    const glm::dvec3 column = glm::normalize(
+        glm::dvec3(-std::sin(a) * std::cos(a), std::cos(a) * std::cos(a), std::sin(a)));
+    const glm::dvec3 normal = glm::cross(row, column);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_NEAR(v.direction[0][i], row[i], 1e-5);
+        EXPECT_NEAR(v.direction[1][i], column[i], 1e-5);
+        EXPECT_NEAR(v.direction[2][i], normal[i], 1e-5);
+        EXPECT_NEAR(v.origin[i], kOrigin[i], 1e-5);
+    }
+    EXPECT_NEAR(v.spacing.z, kSpacing.z, 1e-5);
+}
+
+TEST_F(Dicom, AJpegLosslessSeriesDecodes) {
+    const Volume v = readDicom(write("jpeg", "--jpeg-lossless"));
+    expectSameValues(v, source());
+}
+
+// Two series in one folder (a localizer beside the CT): no choice is an
+// error listing both; a number, a description (any case) or a UID picks one.
+TEST_F(Dicom, TwoSeriesInOneFolderArePickedByNumberDescriptionOrUid) {
+    write("study/ct", "--series-number 3 --description 'CT head' --uid 1.2.3.4.5");
+    write("study/localizer", "--series-number 1 --description Localizer --oblique 10");
+    const fs::path study = path("study");
+    const std::string message = messageOf([&] { readDicom(study); });
+    EXPECT_NE(message.find("holds 2 series"), std::string::npos) << message;
+    EXPECT_NE(message.find("\"CT head\""), std::string::npos) << message;
+    EXPECT_NE(message.find("\"Localizer\""), std::string::npos) << message;
+    EXPECT_EQ(readDicom(study, "3").direction, glm::dmat3(1.0));
+    EXPECT_EQ(readDicom(study, "ct HEAD").direction, glm::dmat3(1.0));
+    EXPECT_EQ(readDicom(study, "1.2.3.4.5").direction, glm::dmat3(1.0));
+    EXPECT_NE(readDicom(study, "localizer").direction, glm::dmat3(1.0));
+    const std::string none = messageOf([&] { readDicom(study, "7"); });
+    EXPECT_NE(none.find("no series matches \"7\""), std::string::npos) << none;
+    const DicomListing listing = listDicom(study);
+    ASSERT_EQ(listing.series.size(), 2u);
+    EXPECT_EQ(listing.series[0].number, "1"); // ordered by number
+    EXPECT_EQ(listing.series[1].dims, kDims);
+}
+
+// A file that is not DICOM is passed over; a truncated slice is an error
+// naming it.
+TEST_F(Dicom, AForeignFileIsPassedOverATruncatedSliceRefused) {
+    const fs::path folder = write("ct");
+    writeFile("ct/README.txt", "not an image");
+    expectSameValues(readDicom(folder), source());
+    EXPECT_EQ(listDicom(folder).ignored, 1u);
+    const fs::path cut = write("cut", "--truncate-slice 4");
+    const std::string message = messageOf([&] { readDicom(cut); });
+    EXPECT_NE(message.find("slice0004.dcm"), std::string::npos) << message;
+}
+
+// A stack that is not one regular grid is refused, saying why.
+TEST_F(Dicom, IrregularStacksAreRefused) {
+    const std::string missing = messageOf([&] { readDicom(write("gap", "--skip-slice 4")); });
+    EXPECT_NE(missing.find("slices missing between"), std::string::npos) << missing;
+    const std::string uneven = messageOf([&] { readDicom(write("uneven", "--skew 0.2")); });
+    EXPECT_NE(uneven.find("uneven slice spacing"), std::string::npos) << uneven;
+    const std::string tilt = messageOf([&] { readDicom(write("tilt", "--tilt 0.4")); });
+    EXPECT_NE(tilt.find("gantry tilt"), std::string::npos) << tilt;
+    fs::create_directories(path("empty"));
+    writeFile("empty/notes.txt", "no images here");
+    const std::string empty = messageOf([&] { readDicom(path("empty")); });
+    EXPECT_NE(empty.find("no DICOM image found"), std::string::npos) << empty;
+}
+
+// A DICOMDIR names the series of the folder it indexes.
+TEST_F(Dicom, ADicomdirReadsItsSeries) {
+    const fs::path folder = write("disc", "--shuffle --media-names");
+    const std::string command =
+        "cd " + folder.string() + " && gdcmgendir -i . -o DICOMDIR > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    expectSameValues(readDicom(folder / "DICOMDIR"), source());
+    EXPECT_TRUE(isDicomPath(folder / "DICOMDIR"));
+    EXPECT_FALSE(isDicomPath(path("source.nrrd")));
+}
+
+} // namespace
+} // namespace cutaway::test
