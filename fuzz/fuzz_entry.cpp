@@ -59,6 +59,10 @@ void fuzzNifti(const std::uint8_t* data, std::size_t size) {
     expectingInputErrors([&] { valueRange(readNiftiBytes(bytesOf(data, size), "fuzz.nii")); });
 }
 
+void fuzzMetaImage(const std::uint8_t* data, std::size_t size) {
+    expectingInputErrors([&] { valueRange(readMetaImageBytes(bytesOf(data, size), "fuzz.mha")); });
+}
+
 void fuzzNhdr(const std::uint8_t* data, std::size_t size) {
     expectingInputErrors([&] {
         valueRange(readNrrdBytes(bytesOf(data, size), "fuzz.nhdr", CUTAWAY_FUZZ_NHDR_DIR));

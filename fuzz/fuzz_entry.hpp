@@ -22,6 +22,8 @@ void fuzzNrrd(const std::uint8_t* data, std::size_t size);
 /// The bytes of a .nii or .nii.gz -> readNiftiBytes.
 void fuzzNifti(const std::uint8_t* data, std::size_t size);
 
+/// The bytes of a MetaImage with attached data (.mha) -> readMetaImageBytes.
+void fuzzMetaImage(const std::uint8_t* data, std::size_t size);
 /// The bytes of a detached NRRD header (.nhdr) -> readNrrdBytes with its
 /// data file looked up in fuzz/nhdr_data/ (raw and gzip data files; what a
 /// header names beyond them, a folder, a device, is refused unread).

@@ -6,17 +6,20 @@ should change):
   fuzz/corpus/scene/  the example scenes of scenes/ and the bad scenes of tests/scene/bad/
   fuzz/corpus/nrrd/   tiny hand-made NRRD files: every voxel type, both byte orders, raw and gzip
   fuzz/corpus/nifti/  tiny hand-made NIfTI-1 files, .nii and .nii.gz
+  fuzz/corpus/metaimage/  tiny hand-made MetaImage files (.mha): types, byte orders, zlib
   fuzz/corpus/nhdr/   detached NRRD headers naming the data files of fuzz/nhdr_data/
   fuzz/corpus/gltf/   the example scenes' tool models (scenes/meshes/)
   fuzz/nhdr_data/     the data files those headers name: raw, gzip, with lines to skip
   fuzz/scene.dict     the keys and enum strings of scenes/scene.schema.json
   fuzz/nrrd.dict      NRRD magic, field names and values
+  fuzz/metaimage.dict MetaImage keys and values
   fuzz/nhdr.dict      the same, and data file names (fuzz/nhdr_data/'s, a folder, a device)
   fuzz/gltf.dict      glTF keys, enums and component types
 
 Deterministic: gzip streams carry no time stamp, files are written in order.
 """
 import gzip
+import zlib
 import json
 import shutil
 import struct
@@ -189,6 +192,46 @@ def nifti_seeds() -> None:
         (out / name).write_bytes(content)
 
 
+def metaimage(dims, element: str, data: bytes, extra: str = "", big=False) -> bytes:
+    header = (f"ObjectType = Image\nNDims = {len(dims)}\nBinaryData = True\n"
+              f"BinaryDataByteOrderMSB = {'True' if big else 'False'}\n"
+              f"DimSize = {' '.join(str(d) for d in dims)}\nElementType = {element}\n"
+              f"{extra}ElementDataFile = LOCAL\n")
+    return header.encode() + data
+
+
+def metaimage_seeds() -> None:
+    out = fresh("metaimage")
+    seeds = {
+        "uchar.mha": metaimage((2, 2, 2), "MET_UCHAR", bytes(range(8))),
+        "short-big-placed.mha": metaimage(
+            (2, 1, 2), "MET_SHORT", struct.pack(">4h", -1000, 0, 1, 3000), big=True,
+            extra="Offset = -1 2 3\nTransformMatrix = 0 1 0 -1 0 0 0 0 1\n"
+                  "ElementSpacing = 0.5 0.5 2\n"),
+        "float-zlib.mha": metaimage(
+            (2, 2, 1), "MET_FLOAT", zlib.compress(struct.pack("<4f", 0.0, 0.25, 1.0, -1.0)),
+            extra="CompressedData = True\nCompressedDataSize = 24\n"),
+        "ushort-2d.mha": metaimage((3, 2), "MET_USHORT", struct.pack("<6H", 0, 1, 2, 3, 4, 65535)),
+        "double-headersize.mha": metaimage(
+            (1, 1, 1), "MET_DOUBLE", b"xxxx" + struct.pack("<d", 2.5), extra="HeaderSize = 4\n"),
+        "char-at-end.mha": metaimage((2, 1, 1), "MET_CHAR", b"junk" + bytes([0x80, 0x7F]),
+                                     extra="HeaderSize = -1\n"),
+    }
+    for name, content in seeds.items():
+        (out / name).write_bytes(content)
+
+
+def metaimage_dict() -> None:
+    keys = ["ObjectType", "NDims", "DimSize", "ElementType", "ElementSpacing", "ElementDataFile",
+            "BinaryData", "BinaryDataByteOrderMSB", "ElementByteOrderMSB", "CompressedData",
+            "CompressedDataSize", "HeaderSize", "Offset", "Origin", "Position", "TransformMatrix",
+            "Rotation", "Orientation", "AnatomicalOrientation", "ElementNumberOfChannels"]
+    values = ["MET_UCHAR", "MET_CHAR", "MET_USHORT", "MET_SHORT", "MET_UINT", "MET_INT",
+              "MET_FLOAT", "MET_DOUBLE", "MET_LONG_LONG", "LOCAL", "LIST", "True", "False", "-1",
+              "Image", "RAI", "\n", "nan", "1e308"]
+    dictionary(ROOT / "fuzz" / "metaimage.dict", [k + " = " for k in keys] + values)
+
+
 def dictionary(path: Path, words) -> None:
     def quoted(word: str) -> str:  # libFuzzer's escapes: \\ \" \xAB
         return '"' + "".join(
@@ -256,9 +299,11 @@ if __name__ == "__main__":
     scene_seeds()
     nrrd_seeds()
     nifti_seeds()
+    metaimage_seeds()
     nhdr_seeds()
     gltf_seeds()
     scene_dict()
     nrrd_dict()
+    metaimage_dict()
     nhdr_dict()
     gltf_dict()

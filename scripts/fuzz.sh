@@ -15,6 +15,7 @@ targets=(
   "scene 16384 fuzz/scene.dict"
   "nrrd 4096 fuzz/nrrd.dict"
   "nifti 4096 -"
+  "metaimage 4096 fuzz/metaimage.dict"
   "nhdr 4096 fuzz/nhdr.dict"
   "gltf 65536 fuzz/gltf.dict"
 )

@@ -36,7 +36,7 @@ bool hasVolumeExtension(const std::filesystem::path& path) {
     std::string name = path.filename().string();
     std::transform(name.begin(), name.end(), name.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    for (const std::string_view suffix : {".nrrd", ".nhdr", ".nii", ".nii.gz"}) {
+    for (const std::string_view suffix : {".nrrd", ".nhdr", ".nii", ".nii.gz", ".mha", ".mhd"}) {
         if (name.size() > suffix.size() && name.ends_with(suffix)) return true;
     }
     return false;
@@ -115,7 +115,7 @@ std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
 /// `phantom` is required.
 ///
 ///  * file     string, path, required unless `phantom` is given
-///             A .nrrd, .nhdr, .nii or .nii.gz file, a DICOM folder, DICOMDIR
+///             A .nrrd, .nhdr, .nii, .nii.gz, .mha or .mhd file, a DICOM folder, DICOMDIR
 ///             or file of a series (volume/dicom.hpp), or a headerless file
 ///             laid out as `raw` says. Relative paths are relative to the
 ///             scene file's folder. The file must exist.
@@ -148,8 +148,8 @@ void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem
     if (!volume.file.empty() && std::filesystem::is_regular_file(volume.file, ec)) {
         if (!reader.has("raw") && !hasVolumeExtension(volume.file) && !dicom) {
             reader.expected(reader.pointerOf("file"),
-                            "a .nrrd, .nhdr, .nii or .nii.gz file, a DICOM file, folder or "
-                            "DICOMDIR, or a \"raw\" layout for a headerless file",
+                            "a .nrrd, .nhdr, .nii, .nii.gz, .mha or .mhd file, a DICOM file, "
+                            "folder or DICOMDIR, or a \"raw\" layout for a headerless file",
                             *reader.find("file"));
         }
     }

@@ -11,6 +11,7 @@
 #include "volume/io_util.hpp"
 #include "volume/nrrd_header.hpp"
 #include "volume/volume.hpp"
+#include "volume/voxel_data.hpp"
 
 #include <cmath>
 #include <limits>
@@ -342,51 +343,6 @@ void openData(NrrdData& d, const detail::NrrdFields& f, std::istream& in,
     d.ctx = ctx + " (data file " + dataPath.string() + ")";
 }
 
-/// The `bytes` of raw data, `e.byteSkip` after the stream's position (-1:
-/// the file's last bytes).
-std::vector<std::byte> readRawData(const NrrdData& d, const NrrdEncoding& e, std::size_t bytes) {
-    auto start = static_cast<std::uint64_t>(d.stream->tellg());
-    if (e.byteSkip == -1) {
-        // Data at the end of the file, whatever comes before it.
-        start = d.fileSize < bytes ? d.fileSize + 1 : d.fileSize - bytes;
-    } else {
-        start += static_cast<std::uint64_t>(e.byteSkip);
-    }
-    const std::uint64_t available = start <= d.fileSize ? d.fileSize - start : 0;
-    if (start > d.fileSize || available < bytes) {
-        throw InputError(d.ctx + ": data truncated: expected " + std::to_string(bytes) +
-                         " bytes after the header, found " + std::to_string(available));
-    }
-    d.stream->seekg(static_cast<std::streamoff>(start));
-    std::vector<std::byte> data(bytes);
-    if (detail::readSome(*d.stream, data.data(), bytes) != bytes) {
-        throw InputError(d.ctx + ": read error in the voxel data");
-    }
-    return data;
-}
-
-/// The `bytes` of gzip data, its byte skip counting decompressed bytes; no
-/// more and no fewer.
-std::vector<std::byte> readGzip(const NrrdData& d, const NrrdEncoding& e, std::size_t bytes) {
-    detail::GzipReader reader(*d.stream, d.ctx);
-    if (reader.skip(static_cast<std::uint64_t>(e.byteSkip)) <
-        static_cast<std::uint64_t>(e.byteSkip)) {
-        throw InputError(d.ctx + ": data truncated: byte skip " + std::to_string(e.byteSkip) +
-                         " goes past the end of the decompressed data");
-    }
-    std::vector<std::byte> data = detail::readUpTo(reader, bytes);
-    if (data.size() < bytes) {
-        throw InputError(d.ctx + ": data truncated: expected " + std::to_string(bytes) +
-                         " bytes after decompression, found " + std::to_string(data.size()));
-    }
-    std::byte extra{};
-    if (reader.read(&extra, 1) != 0) {
-        throw InputError(d.ctx + ": decompressed data exceeds the declared size (" +
-                         std::to_string(bytes) + " bytes)");
-    }
-    return data;
-}
-
 /// Reads a NRRD whose header starts at the beginning of `in` (`headerFileSize`
 /// bytes in all). A detached data file is looked up in `dataFolder`; without
 /// one (bytes in memory) a 'data file' field is an error.
@@ -413,8 +369,10 @@ Volume readNrrdStream(std::istream& in, std::uint64_t headerFileSize, const std:
                              " goes past the end of the file");
         }
     }
-    volume.data = encoding.gzip ? readGzip(data, encoding, grid.bytes)
-                                : readRawData(data, encoding, grid.bytes);
+    const detail::VoxelSource source{data.stream, data.ctx, data.fileSize};
+    volume.data = encoding.gzip
+                      ? detail::readCompressedVoxels(source, encoding.byteSkip, grid.bytes)
+                      : detail::readRawVoxels(source, encoding.byteSkip, grid.bytes);
     if (detail::needsSwap(encoding.bigEndian)) {
         detail::swapBytes(volume.data.data(), volume.voxelCount(), voxelSize(grid.type));
     }

@@ -201,14 +201,17 @@ bool endsWith(const std::string& text, std::string_view suffix) {
 Volume readVolume(const std::filesystem::path& path) {
     const std::string name = detail::toLower(path.filename().string());
     const bool named = endsWith(name, ".nrrd") || endsWith(name, ".nhdr") ||
-                       endsWith(name, ".nii") || endsWith(name, ".nii.gz");
+                       endsWith(name, ".nii") || endsWith(name, ".nii.gz") ||
+                       endsWith(name, ".mha") || endsWith(name, ".mhd");
     if (!named && isDicomPath(path)) return readDicom(path);
     (void)InputFile(path, "volume"); // "no such file" before any talk of extensions
     if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) return readNrrd(path);
     if (endsWith(name, ".nii") || endsWith(name, ".nii.gz")) return readNifti(path);
+    if (endsWith(name, ".mha") || endsWith(name, ".mhd")) return readMetaImage(path);
     throw InputError(
         path.string() + ": unsupported file extension '" + path.extension().string() +
-        "' (supported: .nrrd, .nhdr, .nii, .nii.gz, DICOM files and folders; headerless "
+        "' (supported: .nrrd, .nhdr, .nii, .nii.gz, .mha, .mhd, DICOM files and folders; "
+        "headerless "
         "raw files need an explicit layout)");
 }
 

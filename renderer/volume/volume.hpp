@@ -102,11 +102,14 @@ struct RawLayout {
     bool operator==(const RawLayout&) const = default;
 };
 
-/// Reads .nrrd/.nhdr, .nii/.nii.gz by extension. Throws InputError naming the
+/// Reads .nrrd/.nhdr, .nii/.nii.gz, .mha/.mhd by extension, and DICOM
+/// (volume/dicom.hpp). Throws InputError naming the
 /// file and the problem (missing file, bad header, truncated data, ...).
 Volume readVolume(const std::filesystem::path& path);
 Volume readNrrd(const std::filesystem::path& path);
 Volume readNifti(const std::filesystem::path& path);
+/// MetaImage: .mha (attached data) or .mhd (ElementDataFile names the data).
+Volume readMetaImage(const std::filesystem::path& path);
 Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
 /// The files reading the volume `path` reads: the file itself and, for a
 /// detached NRRD header, its data file. A header that cannot be read gives
@@ -121,6 +124,8 @@ Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name);
 Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name,
                      const std::filesystem::path& dataFolder);
 Volume readNiftiBytes(std::span<const std::byte> bytes, const std::string& name);
+/// A MetaImage header with its data attached (ElementDataFile = LOCAL).
+Volume readMetaImageBytes(std::span<const std::byte> bytes, const std::string& name);
 
 /// Writes an attached-header NRRD (raw or gzip encoding), native voxel type,
 /// little endian. A volume with a place in a space (hasPhysicalPlacement) gets

@@ -60,6 +60,9 @@ TEST(FuzzReplay, NrrdCorpus) {
 TEST(FuzzReplay, NiftiCorpus) {
     EXPECT_GE(replay("corpus", "nifti", fuzz::fuzzNifti), 8u);
 }
+TEST(FuzzReplay, MetaImageCorpus) {
+    EXPECT_GE(replay("corpus", "metaimage", fuzz::fuzzMetaImage), 6u);
+}
 TEST(FuzzReplay, NhdrCorpus) {
     EXPECT_GE(replay("corpus", "nhdr", fuzz::fuzzNhdr), 6u);
 }

@@ -308,8 +308,9 @@ TEST(SceneParser, HeaderlessFilesNeedARawLayout) {
     dir.write("scan.raw", "x");
     EXPECT_EQ(
         parseError(json::parse(R"({"version": 1, "volume": {"file": "scan.raw"}})"), dir.path()),
-        "scene.json: /volume/file: expected a .nrrd, .nhdr, .nii or .nii.gz file, a DICOM "
-        "file, folder or DICOMDIR, or a \"raw\" layout for a headerless file, got \"scan.raw\"");
+        "scene.json: /volume/file: expected a .nrrd, .nhdr, .nii, .nii.gz, .mha or .mhd file, a "
+        "DICOM file, folder or DICOMDIR, or a \"raw\" layout for a headerless file, got "
+        "\"scan.raw\"");
     EXPECT_EQ(parseError(json::parse(R"({"version": 1, "volume": {"file": "scan.raw",
         "raw": {"dims": [1, 1, 1]}}})"),
                          dir.path()),
