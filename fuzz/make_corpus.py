@@ -5,7 +5,7 @@ should change):
 
   fuzz/corpus/scene/  the example scenes of scenes/ and the bad scenes of tests/scene/bad/
   fuzz/corpus/nrrd/   tiny hand-made NRRD files: every voxel type, both byte orders, raw and gzip
-  fuzz/corpus/nifti/  tiny hand-made NIfTI-1 files, .nii and .nii.gz
+  fuzz/corpus/nifti/  tiny hand-made NIfTI-1 and NIfTI-2 files, .nii and .nii.gz
   fuzz/corpus/metaimage/  tiny hand-made MetaImage files (.mha): types, byte orders, zlib
   fuzz/corpus/nhdr/   detached NRRD headers naming the data files of fuzz/nhdr_data/
   fuzz/corpus/gltf/   the example scenes' tool models (scenes/meshes/)
@@ -166,6 +166,22 @@ def nifti(
     return bytes(h) + extension + data
 
 
+def nifti2(dims, datatype: int, bitpix: int, data: bytes, *, big=False, slope=0.0, sform=0) -> bytes:
+    e = ">" if big else "<"
+    h = bytearray(540)
+    struct.pack_into(e + "i", h, 0, 540)
+    h[4:12] = b"n+2\0\r\n\x1a\n"
+    struct.pack_into(e + "2h", h, 12, datatype, bitpix)
+    full = list(dims) + [1] * (7 - len(dims))
+    struct.pack_into(e + "8q", h, 16, len(dims), *full)
+    struct.pack_into(e + "8d", h, 104, 1.0, 0.5, 0.75, 2.0, 1, 1, 1, 1)
+    struct.pack_into(e + "q2d", h, 168, 544, slope, 0.0)
+    struct.pack_into(e + "2i", h, 344, 0, sform)
+    for row, offset in enumerate((400, 432, 464)):  # srow_x/y/z
+        struct.pack_into(e + "4d", h, offset, *[-1.0 if c == row else 0.0 for c in range(3)], 7)
+    return bytes(h) + b"\0\0\0\0" + data
+
+
 def nifti_seeds() -> None:
     out = fresh("nifti")
     seeds = {
@@ -187,6 +203,10 @@ def nifti_seeds() -> None:
         ),
         "int8-big.nii.gz": gz(nifti((2, 1, 1), 256, 8, bytes([0x80, 0x7F]), big=True)),
         "uint32.nii": nifti((1, 1, 1), 768, 32, struct.pack("<I", 123456)),
+        "nifti2-int16-sform.nii": nifti2((2, 1, 2), 4, 16, struct.pack("<4h", -5, 0, 5, 9),
+                                         slope=2.0, sform=1),
+        "nifti2-float-big.nii.gz": gz(nifti2((1, 2, 1), 16, 32, struct.pack(">2f", 1.5, -2.0),
+                                             big=True)),
     }
     for name, content in seeds.items():
         (out / name).write_bytes(content)

@@ -1,4 +1,5 @@
-// NIfTI-1 single-file reader (.nii, .nii.gz; magic "n+1"), either byte order.
+// NIfTI-1 and NIfTI-2 single-file reader (.nii, .nii.gz; magic "n+1", "n+2"),
+// either byte order.
 // Geometry from the sform, else the qform, converted from RAS to LPS (volume.hpp).
 // https://nifti.nimh.nih.gov/nifti-1/documentation/nifti1fields
 #include "core/error.hpp"
@@ -11,21 +12,37 @@
 #include <cmath>
 #include <cstring>
 #include <optional>
+#include <utility>
 
 namespace cutaway {
 
 namespace {
 
-constexpr std::size_t kHeaderSize = 348;
+constexpr std::size_t kHeader1 = 348;
+constexpr std::size_t kHeader2 = 540;
 /// vox_offset beyond this is not a real file (it would mean a gigabyte of
 /// header extensions); refusing it keeps a hostile .nii.gz from making us
 /// inflate gigabytes just to find the data.
 constexpr double kMaxVoxOffset = double(std::uint64_t{1} << 30);
 
-/// Field access on the raw 348 bytes, converting from the file's byte order.
+/// Where NIfTI-1 and NIfTI-2 keep the fields read here: NIfTI-2 widens the
+/// integers to 64 bits (codes to 32) and the reals to doubles, and moves them.
+struct Layout {
+    std::size_t size;     ///< sizeof_hdr
+    bool wide;            ///< NIfTI-2
+    std::size_t datatype; ///< int16 in both
+    std::size_t dim, pixdim, voxOffset, slope, inter;
+    std::size_t qformCode, sformCode, quatern, qoffset, srow;
+};
+constexpr Layout kNifti1{kHeader1, false, 70, 40, 76, 108, 112, 116, 252, 254, 256, 268, 280};
+constexpr Layout kNifti2{kHeader2, true, 12, 16, 104, 168, 176, 184, 344, 348, 352, 376, 400};
+
+/// Field access on the raw header bytes, converting from the file's byte
+/// order and widths (Layout).
 class HeaderBytes {
 public:
-    HeaderBytes(const std::byte* bytes, bool swap) : m_bytes(bytes), m_swap(swap) {}
+    HeaderBytes(const std::byte* bytes, bool swap, const Layout& layout)
+        : m_bytes(bytes), m_swap(swap), m_layout(layout) {}
 
     template <typename T>
     T get(std::size_t offset) const {
@@ -37,11 +54,24 @@ public:
         return value;
     }
     std::int16_t i16(std::size_t offset) const { return get<std::int16_t>(offset); }
-    float f32(std::size_t offset) const { return get<float>(offset); }
+    /// dim[i] (int16, NIfTI-2 int64).
+    std::int64_t dim(std::size_t i) const {
+        return m_layout.wide ? get<std::int64_t>(m_layout.dim + 8 * i) : i16(m_layout.dim + 2 * i);
+    }
+    /// A code (qform_code, sform_code: int16, NIfTI-2 int32).
+    std::int32_t code(std::size_t offset) const {
+        return m_layout.wide ? get<std::int32_t>(offset) : i16(offset);
+    }
+    /// The i-th real from `offset` (float, NIfTI-2 double).
+    double real(std::size_t offset, std::size_t i = 0) const {
+        return m_layout.wide ? get<double>(offset + 8 * i) : get<float>(offset + 4 * i);
+    }
+    const Layout& layout() const { return m_layout; }
 
 private:
     const std::byte* m_bytes;
     bool m_swap;
+    Layout m_layout;
 };
 
 VoxelType niftiType(std::int16_t code, const std::string& ctx) {
@@ -127,17 +157,22 @@ std::optional<Placement> normalised(glm::dmat3 m, glm::dvec3 origin) {
 
 /// Method 3: the affine of srow_x, srow_y, srow_z.
 std::optional<Placement> sformPlacement(const HeaderBytes& h) {
+    const std::size_t srow = h.layout().srow, rowLength = h.layout().wide ? 32 : 16;
     glm::dmat3 m(1.0);
-    for (std::size_t row = 0; row < 3; ++row)
+    glm::dvec3 origin(0.0);
+    for (std::size_t row = 0; row < 3; ++row) {
         for (std::size_t col = 0; col < 3; ++col)
-            m[static_cast<int>(col)][static_cast<int>(row)] = h.f32(280 + 16 * row + 4 * col);
-    return normalised(m, glm::dvec3(h.f32(292), h.f32(308), h.f32(324)));
+            m[static_cast<int>(col)][static_cast<int>(row)] = h.real(srow + rowLength * row, col);
+        origin[static_cast<int>(row)] = h.real(srow + rowLength * row, 3);
+    }
+    return normalised(m, origin);
 }
 
 /// Method 2: the rotation of the quaternion (b, c, d), its third column
 /// negated when qfac (pixdim[0]) is negative, and qoffset.
 std::optional<Placement> qformPlacement(const HeaderBytes& h) {
-    double b = h.f32(256), c = h.f32(260), d = h.f32(264);
+    const std::size_t q = h.layout().quatern, o = h.layout().qoffset;
+    double b = h.real(q, 0), c = h.real(q, 1), d = h.real(q, 2);
     if (!std::isfinite(b) || !std::isfinite(c) || !std::isfinite(d)) return std::nullopt;
     double a = 1.0 - (b * b + c * c + d * d);
     if (a < 1.0e-7) {
@@ -156,8 +191,8 @@ std::optional<Placement> qformPlacement(const HeaderBytes& h) {
     r[0] = {a * a + b * b - c * c - d * d, 2 * (b * c + a * d), 2 * (b * d - a * c)};
     r[1] = {2 * (b * c - a * d), a * a + c * c - b * b - d * d, 2 * (c * d + a * b)};
     r[2] = {2 * (b * d + a * c), 2 * (c * d - a * b), a * a + d * d - c * c - b * b};
-    if (h.f32(76) < 0.0f) r[2] = -r[2];
-    return normalised(r, glm::dvec3(h.f32(268), h.f32(272), h.f32(276)));
+    if (h.real(h.layout().pixdim) < 0.0) r[2] = -r[2]; // qfac
+    return normalised(r, glm::dvec3(h.real(o, 0), h.real(o, 1), h.real(o, 2)));
 }
 
 struct Parsed {
@@ -167,36 +202,37 @@ struct Parsed {
     bool swap = false;
 };
 
-Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
-    std::int32_t sizeofHdr = 0;
-    std::memcpy(&sizeofHdr, raw, 4);
-    bool swap = false;
-    if (sizeofHdr != 348) {
-        detail::swapBytes(reinterpret_cast<std::byte*>(&sizeofHdr), 1, 4);
-        if (sizeofHdr == 348) {
-            swap = true; // written on a machine of the other byte order
-        } else if (sizeofHdr == 540 || std::memcmp(raw, "\x1c\x02\0\0", 4) == 0) {
-            throw InputError(ctx + ": NIfTI-2 files are not supported (save as NIfTI-1)");
-        } else {
-            std::int32_t asWritten = 0;
-            std::memcpy(&asWritten, raw, 4);
-            throw InputError(ctx + ": not a NIfTI-1 file (sizeof_hdr is " +
-                             std::to_string(asWritten) + ", expected 348)");
-        }
+/// Which header `first4` (the file's first 4 bytes, sizeof_hdr) begins, and
+/// whether its byte order is the other one. Throws for neither.
+std::pair<const Layout*, bool> layoutOf(const std::byte* first4, const std::string& ctx) {
+    std::int32_t asWritten = 0, swapped = 0;
+    std::memcpy(&asWritten, first4, 4);
+    swapped = asWritten;
+    detail::swapBytes(reinterpret_cast<std::byte*>(&swapped), 1, 4);
+    for (const Layout* l : {&kNifti1, &kNifti2}) {
+        if (asWritten == std::int32_t(l->size)) return {l, false};
+        if (swapped == std::int32_t(l->size)) return {l, true}; // the other byte order
     }
-    const HeaderBytes h(raw, swap);
-    if (std::memcmp(raw + 344, "ni1\0", 4) == 0) {
+    throw InputError(ctx + ": not a NIfTI file (sizeof_hdr is " + std::to_string(asWritten) +
+                     ", expected 348 for NIfTI-1 or 540 for NIfTI-2)");
+}
+
+void checkMagic(const std::byte* raw, const Layout& l, const std::string& ctx) {
+    if (!l.wide && std::memcmp(raw + 344, "ni1\0", 4) == 0)
         throw InputError(ctx + ": a NIfTI-1 header-only file (magic ni1, data in a separate .img) "
                                "is not supported; use a single .nii");
-    }
-    if (std::memcmp(raw + 344, "n+1\0", 4) != 0) {
+    if (l.wide && std::memcmp(raw + 4, "ni2\0", 4) == 0)
+        throw InputError(ctx + ": a NIfTI-2 header-only file (magic ni2, data in a separate .img) "
+                               "is not supported; use a single .nii");
+    if (!l.wide && std::memcmp(raw + 344, "n+1\0", 4) != 0)
         throw InputError(ctx + ": not a NIfTI-1 file (bad magic, expected \"n+1\")");
-    }
+    if (l.wide && std::memcmp(raw + 4, "n+2\0\r\n\032\n", 8) != 0)
+        throw InputError(ctx + ": not a NIfTI-2 file (bad magic, expected \"n+2\")");
+}
 
-    Parsed p;
-    p.swap = swap;
-    Volume& v = p.volume;
-    const std::int16_t rank = h.i16(40);
+/// dim[]: a single 3D volume, each size >= 1; its voxel data's size.
+std::size_t readDims(const HeaderBytes& h, Volume& v, const std::string& ctx) {
+    const std::int64_t rank = h.dim(0);
     if (rank < 1 || rank > 7) {
         throw InputError(ctx + ": dim[0] is " + std::to_string(rank) + " (must be 1..7)");
     }
@@ -204,45 +240,42 @@ Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
         throw InputError(ctx + ": the image is " + std::to_string(rank) +
                          "-dimensional; cutaway reads 3D volumes");
     }
-    for (int d = 4; d <= rank; ++d) {
-        if (h.i16(40 + 2 * static_cast<std::size_t>(d)) != 1) {
+    for (std::size_t d = 4; d <= std::size_t(rank); ++d) {
+        if (h.dim(d) != 1) {
             throw InputError(ctx + ": dim[" + std::to_string(d) + "] is " +
-                             std::to_string(h.i16(40 + 2 * static_cast<std::size_t>(d))) +
+                             std::to_string(h.dim(d)) +
                              "; cutaway reads a single 3D volume (time series and vectors are not "
                              "supported)");
         }
     }
-    v.type = niftiType(h.i16(70), ctx);
+    v.type = niftiType(h.i16(h.layout().datatype), ctx);
     std::int64_t sizes[3] = {};
-    for (int a = 0; a < 3; ++a) {
-        sizes[a] = h.i16(42 + 2 * static_cast<std::size_t>(a));
+    for (std::size_t a = 0; a < 3; ++a) {
+        sizes[a] = h.dim(a + 1);
         if (sizes[a] < 1) {
             throw InputError(ctx + ": dim[" + std::to_string(a + 1) + "] is " +
                              std::to_string(sizes[a]) + " (must be >= 1)");
         }
     }
-    p.bytes = detail::checkedByteCount(sizes, v.type, ctx);
+    const std::size_t bytes = detail::checkedByteCount(sizes, v.type, ctx);
     v.dims = glm::ivec3(static_cast<int>(sizes[0]), static_cast<int>(sizes[1]),
                         static_cast<int>(sizes[2]));
+    return bytes;
+}
+
+/// Spacing, scaling and placement.
+void readGeometry(const HeaderBytes& h, Volume& v, const std::string& ctx) {
+    const Layout& l = h.layout();
     for (int a = 0; a < 3; ++a) {
         // pixdim may be negative (a flip: only the magnitude is spacing) or 0
         // (written by many tools when unknown: taken as 1 mm).
-        double spacing =
-            std::fabs(static_cast<double>(h.f32(80 + 4 * static_cast<std::size_t>(a))));
+        double spacing = std::fabs(h.real(l.pixdim, std::size_t(a) + 1));
         if (spacing == 0.0) spacing = 1.0;
         detail::checkSpacing(spacing, a, ctx);
         v.spacing[a] = spacing;
     }
-    const double voxOffset = h.f32(108);
-    if (!std::isfinite(voxOffset) || voxOffset < 0.0 || voxOffset > kMaxVoxOffset) {
-        throw InputError(ctx + ": invalid vox_offset " + detail::formatDouble(voxOffset));
-    }
-    // A single file's data cannot start inside the header; old writers left 0 here.
-    p.offset = std::max<std::uint64_t>(352, static_cast<std::uint64_t>(voxOffset));
-
     // Scaling: slope 0 or not finite means none (as the NIfTI standard says).
-    const double slope = h.f32(112);
-    const double inter = h.f32(116);
+    const double slope = h.real(l.slope), inter = h.real(l.inter);
     if (std::isfinite(slope) && slope != 0.0) {
         v.slope = slope;
         v.inter = std::isfinite(inter) ? inter : 0.0;
@@ -250,8 +283,8 @@ Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
     // Orientation: the sform if set, else the qform (NIfTI's methods 3 and 2);
     // neither (or one that is not finite or has a zero axis): none.
     std::optional<Placement> placement;
-    if (h.i16(254) > 0) placement = sformPlacement(h);
-    if (!placement && h.i16(252) > 0) placement = qformPlacement(h);
+    if (h.code(l.sformCode) > 0) placement = sformPlacement(h);
+    if (!placement && h.code(l.qformCode) > 0) placement = qformPlacement(h);
     if (placement) {
         // NIfTI's space is RAS; LPS negates x and y.
         const glm::dmat3 toLps(glm::dvec3(-1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(0, 0, 1));
@@ -259,6 +292,23 @@ Parsed parseHeader(const std::byte* raw, const std::string& ctx) {
         v.origin = toLps * placement->origin;
         v.space = Space::LPS;
     }
+}
+
+/// The header in `raw` (its layout's size of bytes).
+Parsed parseHeader(const std::byte* raw, const Layout& layout, bool swap, const std::string& ctx) {
+    checkMagic(raw, layout, ctx);
+    const HeaderBytes h(raw, swap, layout);
+    Parsed p;
+    p.swap = swap;
+    p.bytes = readDims(h, p.volume, ctx);
+    const double voxOffset =
+        layout.wide ? double(h.get<std::int64_t>(layout.voxOffset)) : h.real(layout.voxOffset);
+    if (!std::isfinite(voxOffset) || voxOffset < 0.0 || voxOffset > kMaxVoxOffset) {
+        throw InputError(ctx + ": invalid vox_offset " + detail::formatDouble(voxOffset));
+    }
+    // A single file's data cannot start inside the header; old writers left 0 here.
+    p.offset = std::max<std::uint64_t>(layout.size + 4, static_cast<std::uint64_t>(voxOffset));
+    readGeometry(h, p.volume, ctx);
     return p;
 }
 
@@ -272,59 +322,76 @@ bool isGzip(std::istream& in) {
     return gzip;
 }
 
+std::string tooShort(const Layout& l, std::uint64_t got, const char* after,
+                     const std::string& ctx) {
+    return ctx + ": too short for a NIfTI-" + (l.wide ? "2" : "1") + " header (" +
+           std::to_string(got) + " bytes" + after + ", need " + std::to_string(l.size) + ")";
+}
+
+/// The header from a gzip stream, then exactly its data.
+Parsed readGzipped(detail::GzipReader& reader, const std::string& ctx) {
+    std::byte raw[kHeader2] = {};
+    if (reader.read(raw, 4) < 4) throw InputError(ctx + ": too short for a NIfTI header");
+    const auto [layout, swap] = layoutOf(raw, ctx);
+    const std::size_t got = 4 + reader.read(raw + 4, layout->size - 4);
+    if (got < layout->size) throw InputError(tooShort(*layout, got, " after decompression", ctx));
+    Parsed p = parseHeader(raw, *layout, swap, ctx);
+    const std::uint64_t gap = p.offset - layout->size;
+    if (reader.skip(gap) < gap) {
+        throw InputError(ctx + ": vox_offset " + std::to_string(p.offset) +
+                         " is beyond the end of the file (" + std::to_string(reader.position()) +
+                         " bytes after decompression)");
+    }
+    p.volume.data = detail::readUpTo(reader, p.bytes);
+    if (p.volume.data.size() < p.bytes) {
+        throw InputError(ctx + ": data truncated: expected " + std::to_string(p.bytes) +
+                         " bytes after vox_offset " + std::to_string(p.offset) + ", found " +
+                         std::to_string(p.volume.data.size()));
+    }
+    std::byte extra{};
+    if (reader.read(&extra, 1) != 0) {
+        throw InputError(ctx + ": decompressed data exceeds the declared size (" +
+                         std::to_string(p.offset + p.bytes) + " bytes)");
+    }
+    return p;
+}
+
+/// The header and the data of an uncompressed file of `fileSize` bytes.
+Parsed readPlain(std::istream& in, std::uint64_t fileSize, const std::string& ctx) {
+    std::byte raw[kHeader2] = {};
+    if (fileSize < 4) throw InputError(tooShort(kNifti1, fileSize, "", ctx));
+    detail::readSome(in, raw, 4);
+    const auto [layout, swap] = layoutOf(raw, ctx);
+    if (fileSize < layout->size) throw InputError(tooShort(*layout, fileSize, "", ctx));
+    detail::readSome(in, raw + 4, layout->size - 4);
+    Parsed p = parseHeader(raw, *layout, swap, ctx);
+    if (p.offset > fileSize) {
+        throw InputError(ctx + ": vox_offset " + std::to_string(p.offset) +
+                         " is beyond the end of the file (" + std::to_string(fileSize) + " bytes)");
+    }
+    const std::uint64_t available = fileSize - p.offset;
+    if (available < p.bytes) {
+        throw InputError(ctx + ": data truncated: expected " + std::to_string(p.bytes) +
+                         " bytes after vox_offset " + std::to_string(p.offset) + ", found " +
+                         std::to_string(available));
+    }
+    in.seekg(static_cast<std::streamoff>(p.offset));
+    p.volume.data.resize(p.bytes);
+    if (detail::readSome(in, p.volume.data.data(), p.bytes) != p.bytes) {
+        throw InputError(ctx + ": read error in the voxel data");
+    }
+    return p;
+}
+
 /// Reads a .nii or .nii.gz from the start of `in` (`fileSize` bytes).
 Volume readNiftiStream(std::istream& in, std::uint64_t fileSize, const std::string& ctx) {
-    std::byte raw[kHeaderSize];
     Parsed p;
     // Sniff the content rather than trust the extension: a .nii may be gzipped.
     if (isGzip(in)) {
         detail::GzipReader reader(in, ctx);
-        const std::size_t got = reader.read(raw, kHeaderSize);
-        if (got < kHeaderSize) {
-            throw InputError(ctx + ": too short for a NIfTI-1 header (" + std::to_string(got) +
-                             " bytes after decompression, need 348)");
-        }
-        p = parseHeader(raw, ctx);
-        const std::uint64_t gap = p.offset - kHeaderSize;
-        if (reader.skip(gap) < gap) {
-            throw InputError(ctx + ": vox_offset " + std::to_string(p.offset) +
-                             " is beyond the end of the file (" +
-                             std::to_string(reader.position()) + " bytes after decompression)");
-        }
-        p.volume.data = detail::readUpTo(reader, p.bytes);
-        if (p.volume.data.size() < p.bytes) {
-            throw InputError(ctx + ": data truncated: expected " + std::to_string(p.bytes) +
-                             " bytes after vox_offset " + std::to_string(p.offset) + ", found " +
-                             std::to_string(p.volume.data.size()));
-        }
-        std::byte extra{};
-        if (reader.read(&extra, 1) != 0) {
-            throw InputError(ctx + ": decompressed data exceeds the declared size (" +
-                             std::to_string(p.offset + p.bytes) + " bytes)");
-        }
+        p = readGzipped(reader, ctx);
     } else {
-        if (fileSize < kHeaderSize) {
-            throw InputError(ctx + ": too short for a NIfTI-1 header (" + std::to_string(fileSize) +
-                             " bytes, need 348)");
-        }
-        detail::readSome(in, raw, kHeaderSize);
-        p = parseHeader(raw, ctx);
-        if (p.offset > fileSize) {
-            throw InputError(ctx + ": vox_offset " + std::to_string(p.offset) +
-                             " is beyond the end of the file (" + std::to_string(fileSize) +
-                             " bytes)");
-        }
-        const std::uint64_t available = fileSize - p.offset;
-        if (available < p.bytes) {
-            throw InputError(ctx + ": data truncated: expected " + std::to_string(p.bytes) +
-                             " bytes after vox_offset " + std::to_string(p.offset) + ", found " +
-                             std::to_string(available));
-        }
-        in.seekg(static_cast<std::streamoff>(p.offset));
-        p.volume.data.resize(p.bytes);
-        if (detail::readSome(in, p.volume.data.data(), p.bytes) != p.bytes) {
-            throw InputError(ctx + ": read error in the voxel data");
-        }
+        p = readPlain(in, fileSize, ctx);
     }
     if (p.swap) {
         detail::swapBytes(p.volume.data.data(), p.volume.voxelCount(), voxelSize(p.volume.type));

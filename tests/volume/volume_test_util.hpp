@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "volume/volume.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -98,6 +99,44 @@ struct NiftiHeader {
         put(268, qoffset, 12);
         put(280, srow, 48);
         put(344, magic, std::strlen(magic) + 1);
+        return h;
+    }
+
+    /// The same header as NIfTI-2 (540 bytes and the extension flag: 64-bit
+    /// dims and offset, 32-bit codes, doubles), as the format's spec lays it
+    /// out; `magic` "n+2" (or "ni2"), vox_offset at least 544.
+    std::string nifti2(const char* magic2 = "n+2") const {
+        std::string h(544, '\0');
+        auto put = [&](std::size_t at, const void* p, std::size_t n) { std::memcpy(&h[at], p, n); };
+        auto putDoubles = [&](std::size_t at, const float* v, std::size_t n) {
+            for (std::size_t i = 0; i < n; ++i) {
+                const double d = v[i];
+                put(at + 8 * i, &d, 8);
+            }
+        };
+        const std::int32_t size = 540;
+        put(0, &size, 4);
+        put(4, magic2, std::strlen(magic2));
+        put(4 + std::strlen(magic2), "\0\r\n\032\n", 5);
+        put(12, &datatype, 2);
+        put(14, &bitpix, 2);
+        for (std::size_t i = 0; i < 8; ++i) {
+            const std::int64_t d = dims[i];
+            put(16 + 8 * i, &d, 8);
+        }
+        putDoubles(104, pixdim, 8);
+        const std::int64_t offset = std::max<std::int64_t>(544, std::int64_t(voxOffset) + 192);
+        put(168, &offset, 8);
+        putDoubles(176, &sclSlope, 1);
+        putDoubles(184, &sclInter, 1);
+        const std::int32_t q = qformCode, sf = sformCode;
+        put(344, &q, 4);
+        put(348, &sf, 4);
+        putDoubles(352, quatern, 3);
+        putDoubles(376, qoffset, 3);
+        putDoubles(400, srow[0], 4);
+        putDoubles(432, srow[1], 4);
+        putDoubles(464, srow[2], 4);
         return h;
     }
 };
