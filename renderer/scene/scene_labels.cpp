@@ -2,6 +2,7 @@
 // and segment alignment, and /transfer/labels itself.
 #include "scene/scene_sections.hpp"
 
+#include <fnmatch.h>
 #include <system_error>
 
 namespace cutaway::scene_detail {
@@ -17,6 +18,29 @@ const std::map<std::string, std::int64_t>& phantomLabelNames(const std::string& 
         {"background", 0}, {"rind", 1}, {"pith", 2}, {"segments", 3}};
     static const std::map<std::string, std::int64_t> none;
     return phantom == "head" ? head : phantom == "orange" ? orange : none;
+}
+
+// A name with shell wildcards (*, ?, [...]) selects every name it matches.
+bool isGlob(const std::string& name) {
+    return name.find_first_of("*?[") != std::string::npos;
+}
+
+std::string withoutWildcards(std::string pattern) {
+    std::erase_if(pattern, [](char c) { return c == '*' || c == '?' || c == '[' || c == ']'; });
+    return pattern;
+}
+
+// Adds the ids of the names `pattern` matches (fnmatch, case-sensitive, as
+// names are); whether any did.
+bool addMatches(const std::string& pattern, const std::map<std::string, std::int64_t>& names,
+                std::vector<std::int64_t>& ids) {
+    bool any = false;
+    for (const auto& [name, id] : names)
+        if (::fnmatch(pattern.c_str(), name.c_str(), 0) == 0) {
+            ids.push_back(id);
+            any = true;
+        }
+    return any;
 }
 
 } // namespace
@@ -68,8 +92,10 @@ void parseLabels(JsonReader& reader, LabelSource& labels, const VolumeSource& vo
     }
 }
 
-/// A list of label references at `key`: ids (integers >= 0) or names from
-/// /labels/names. Reports unknown names with the closest known one.
+/// A list of label references at `key`: ids (integers >= 0), names from
+/// /labels/names, or patterns of them ("Frontal_*", "*_L": shell wildcards *,
+/// ? and [...], each selecting every name it matches). Reports unknown names
+/// and patterns that match none with the closest known name.
 std::optional<std::vector<std::int64_t>> readLabelList(JsonReader& reader, std::string_view key,
                                                        const std::optional<LabelSource>& labels,
                                                        bool required) {
@@ -96,7 +122,16 @@ std::optional<std::vector<std::int64_t>> readLabelList(JsonReader& reader, std::
     for (std::size_t i = 0; i < list->size(); ++i) {
         const nlohmann::json& item = (*list)[i];
         const std::string at = pointer + "/" + std::to_string(i);
-        if (item.is_string()) {
+        if (item.is_string() && isGlob(item.get<std::string>())) {
+            if (!addMatches(item.get<std::string>(), labels->names, ids)) {
+                std::string message = "no label name matches the pattern " + describeValue(item);
+                if (const auto close =
+                        closestMatch(withoutWildcards(item.get<std::string>()), known))
+                    message += " (did you mean \"" + *close + "\"?)";
+                reader.diagnostics().error(at, message);
+                ok = false;
+            }
+        } else if (item.is_string()) {
             const auto found = labels->names.find(item.get<std::string>());
             if (found != labels->names.end()) {
                 ids.push_back(found->second);

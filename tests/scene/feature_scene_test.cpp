@@ -74,6 +74,28 @@ TEST(FeatureScene, LabelNamesCanBeGivenAndIdsBeyond255Work) {
     EXPECT_EQ(scene.labelTransfers[0].transfer.points.size(), 2u);
 }
 
+// A pattern selects every name it matches (in the names' order); one that
+// matches none is an error with the closest name, as an unknown name is.
+TEST(FeatureScene, LabelPatternsSelectEveryMatchingName) {
+    const auto labelsOf = [](const std::string& list) {
+        return R"({"labels": {"phantom": true, "names": {"Frontal_L": 11, "Frontal_R": 12,
+                   "Occipital_L": 21}}, "transfer": {)" +
+               std::string(kTransfer) + R"(, "labels": [{"labels": )" + list + ", " + kTransfer +
+               "}]}}";
+    };
+    EXPECT_EQ(parseWith(labelsOf(R"(["Frontal_*"])")).labelTransfers[0].ids,
+              (std::vector<std::int64_t>{11, 12}));
+    EXPECT_EQ(parseWith(labelsOf(R"(["*_L", "brain"])")).labelTransfers[0].ids,
+              (std::vector<std::int64_t>{11, 21, 3}));
+    EXPECT_EQ(parseWith(labelsOf(R"(["s?ull", "[bs]kin"])")).labelTransfers[0].ids,
+              (std::vector<std::int64_t>{2, 1}));
+    const std::string message = parseError(patched(labelsOf(R"(["Frontl_*"])")));
+    EXPECT_NE(message.find("/transfer/labels/0/labels/0: no label name matches the pattern "
+                           "\"Frontl_*\" (did you mean \"Frontal_L\"?)"),
+              std::string::npos)
+        << message;
+}
+
 TEST(FeatureScene, ProblemsNameTheirLocation) {
     EXPECT_NE(parseError(patched(peeler(R"({"mode": "segment", "labels": ["brain"]})") + "}"))
                   .find("/operators/0/alignment/labels: labels need a /labels section"),

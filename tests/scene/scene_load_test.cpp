@@ -218,6 +218,9 @@ const std::map<std::string, std::string> kBadScenes = {
      ": /transfer/unit_distance: expected a number in (0, 1000000], got -1"},
     {"58-cut-antialias-out-of-range.json",
      ": /render/cut_antialias: expected a number in [0, 4], got 5"},
+    {"60-label-pattern-matches-none.json",
+     ": /operators/0/alignment/labels/0: no label name matches the pattern \"brian*\" (did you "
+     "mean \"brain\"?)"},
     {"59-series-without-dicom.json",
      ": /volume/series: only allowed with a DICOM file, folder or DICOMDIR as \"file\""},
 };
