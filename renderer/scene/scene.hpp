@@ -64,6 +64,8 @@ struct LabelSource {
     std::filesystem::path file;                ///< resolved; empty with `phantom`
     bool phantom = false;                      ///< /labels/phantom: the phantom's labels
     std::map<std::string, std::int64_t> names; ///< /labels/names (a phantom's own are added)
+    std::filesystem::path table;               ///< /labels/table, resolved; empty without
+    std::map<std::int64_t, glm::vec3> colors;  ///< the table's colours (linear RGB)
 };
 
 enum class Projection { Perspective, Orthographic };

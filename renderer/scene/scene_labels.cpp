@@ -1,5 +1,7 @@
 // The /labels section, label references ("skull" or 2) used by /transfer/labels
 // and segment alignment, and /transfer/labels itself.
+#include "core/error.hpp"
+#include "scene/label_table.hpp"
 #include "scene/scene_sections.hpp"
 
 #include <fnmatch.h>
@@ -43,6 +45,21 @@ bool addMatches(const std::string& pattern, const std::map<std::string, std::int
     return any;
 }
 
+/// /labels/table: the names and colours of a label table file (label_table.hpp).
+void readTable(JsonReader& reader, LabelSource& labels, const std::filesystem::path& baseDir) {
+    labels.table = readExistingFile(reader, "table", baseDir);
+    std::error_code ec;
+    if (labels.table.empty() || !std::filesystem::is_regular_file(labels.table, ec)) return;
+    try {
+        LabelTable table = readLabelTable(labels.table);
+        for (const auto& [name, id] : table.names)
+            labels.names[name] = id;
+        labels.colors = std::move(table.colors);
+    } catch (const InputError& e) {
+        reader.error("table", e.what());
+    }
+}
+
 } // namespace
 
 /// /labels: a label volume, for classification by label (/transfer/labels)
@@ -56,6 +73,9 @@ bool addMatches(const std::string& pattern, const std::map<std::string, std::int
 ///             orange: rind 1, pith 2, segments 3
 ///  * names    object, default {}: name -> id (an integer in [0, 2^31 - 1]),
 ///             so the scene can say "skull" where it means 2
+///  * table    string, path, default none: a label table file (FreeSurfer
+///             LUT, ITK-SNAP, 3D Slicer, plain id-name lists; label_table.hpp)
+///             giving the names, and colours for "color": "table". Not with `names`.
 void parseLabels(JsonReader& reader, LabelSource& labels, const VolumeSource& volume,
                  const std::filesystem::path& baseDir) {
     const bool hasFile = reader.has("file");
@@ -74,6 +94,9 @@ void parseLabels(JsonReader& reader, LabelSource& labels, const VolumeSource& vo
         else
             labels.names = phantomLabelNames(volume.phantom);
     }
+    if (reader.has("table") && reader.has("names"))
+        reader.errorHere("expected at most one of \"table\" or \"names\", got both");
+    readTable(reader, labels, baseDir);
     if (const nlohmann::json* names = reader.find("names")) {
         if (!names->is_object()) {
             reader.expected(reader.pointerOf("names"), "an object of name: id", *names);
@@ -154,10 +177,35 @@ std::optional<std::vector<std::int64_t>> readLabelList(JsonReader& reader, std::
     return ids;
 }
 
+/// "color": "table": one transfer function per label of `set`, its points'
+/// opacities in the label's colour from /labels/table.
+void addTableColoured(JsonReader& entry, const LabelTransfer& set,
+                      const std::optional<LabelSource>& labels,
+                      std::vector<LabelTransfer>& transfers) {
+    if (!labels || labels->table.empty()) {
+        entry.error("color", "\"table\" needs a /labels/table");
+        return;
+    }
+    for (const std::int64_t id : set.ids) {
+        const auto colour = labels->colors.find(id);
+        if (colour == labels->colors.end()) {
+            entry.error("color", "label " + std::to_string(id) + " has no colour in " +
+                                     labels->table.string());
+            return;
+        }
+        LabelTransfer one{{id}, set.transfer};
+        for (TransferPoint& p : one.transfer.points)
+            p.color = colour->second;
+        transfers.push_back(std::move(one));
+    }
+}
+
 /// /transfer/labels: an array of objects, each a transfer function for some labels.
 ///
 ///  * labels  array of label names or ids, required
 ///  * points  array of at least 2 control points, as /transfer/points, required
+///  * color   "table", default none: each label in its /labels/table colour
+///            (the points' opacities; their colours are not used)
 ///
 /// A sample is classified by the transfer function of its voxel's label
 /// (nearest voxel); labels not listed use /transfer/points. A label listed
@@ -168,8 +216,15 @@ void parseLabelTransfers(JsonReader& reader, std::vector<LabelTransfer>& transfe
         LabelTransfer result;
         if (const auto ids = readLabelList(entry, "labels", labels, true)) result.ids = *ids;
         parseTransfer(entry, result.transfer);
-        transfers.push_back(std::move(result));
+        if (entry.has("color") && entry.string("color", {"table"}))
+            addTableColoured(entry, result, labels, transfers);
+        else
+            transfers.push_back(std::move(result));
     });
+    if (transfers.size() > 254)
+        reader.error("labels", "the sets take " + std::to_string(transfers.size()) +
+                                   " transfer functions (each label coloured from the table takes "
+                                   "its own); at most 254");
 }
 
 } // namespace cutaway::scene_detail

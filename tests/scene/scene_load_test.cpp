@@ -221,6 +221,11 @@ const std::map<std::string, std::string> kBadScenes = {
     {"60-label-pattern-matches-none.json",
      ": /operators/0/alignment/labels/0: no label name matches the pattern \"brian*\" (did you "
      "mean \"brain\"?)"},
+    {"61-label-table-and-names.json",
+     ": /labels: expected at most one of \"table\" or \"names\", got both"},
+    {"62-color-table-without-table.json",
+     ": /transfer/labels/0/color: \"table\" needs a /labels/table"},
+    {"63-label-table-bad-line.json", "tables/bad_line.txt:3: not a label line"},
     {"59-series-without-dicom.json",
      ": /volume/series: only allowed with a DICOM file, folder or DICOMDIR as \"file\""},
 };
