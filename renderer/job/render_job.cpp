@@ -36,6 +36,9 @@ Image FrameRenderer::render(const Scene& scene) {
             m_warnedNonFinite.push_back(key);
             m_warnings.push_back(nonFiniteWarning(scene, fv.nonFinite, fv.scan->voxelCount()));
         }
+        if (fv.labels)
+            for (std::string& w : absentLabelWarnings(scene, *fv.labels))
+                if (m_warnedLabels.insert(w).second) m_warnings.push_back(std::move(w));
         try {
             m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
                 m_ctx, m_baker, std::move(fv.scan), fv.window, fv.worldLo, std::move(fv.labels)));

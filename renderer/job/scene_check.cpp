@@ -103,6 +103,9 @@ void SceneFileCheck::frame(const Scene& scene) {
         if (m_meshesRead.insert(mesh.file.string()).second) mesh::loadGltf(mesh.file);
     if (files.nonFinite > 0 && m_warnedFiles.insert(filesIndex).second)
         m_warnings.push_back(nonFiniteWarning(scene, files.nonFinite, files.scan->voxelCount()));
+    if (files.labels)
+        for (std::string& w : absentLabelWarnings(scene, *files.labels))
+            if (m_warnedLabels.insert(w).second) m_warnings.push_back(std::move(w));
     const glm::dvec3 extent = files.scan->extent();
     for (OperatorOutside& o : operatorsOutside(scene, -0.5 * extent, 0.5 * extent))
         if (m_warned.insert(o.index).second) m_warnings.push_back(std::move(o.message));

@@ -67,7 +67,8 @@ private:
     std::map<SegmentKey, std::string> m_segments; ///< segment checked -> its error, or ""
     std::set<std::string> m_meshesRead;
     std::set<std::size_t> m_warned;
-    std::set<std::size_t> m_warnedFiles; ///< m_files whose non-finite voxels were warned of
+    std::set<std::size_t> m_warnedFiles;  ///< m_files whose non-finite voxels were warned of
+    std::set<std::string> m_warnedLabels; ///< absent-label warnings already given
     std::vector<std::string> m_warnings;
 };
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstring>
 #include <optional>
+#include <set>
 #include <sstream>
 
 namespace cutaway::job {
@@ -100,6 +101,25 @@ std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene,
                              ? makePhantom(scene.volume.phantom, scene.volume.phantomSize).labels
                              : readVolume(scene.labels->file),
                          *scan);
+}
+
+std::vector<std::string> absentLabelWarnings(const Scene& scene, const Volume& labels) {
+    std::set<std::int64_t> carried;
+    for (std::size_t i = 0; i < labels.voxelCount(); ++i)
+        carried.insert(std::int64_t(labels.raw(i)));
+    std::vector<std::string> warnings;
+    const auto check = [&](const std::vector<std::int64_t>& ids, const std::string& pointer) {
+        for (const std::int64_t id : ids)
+            if (!carried.contains(id))
+                warnings.push_back(pointer + ": label " + std::to_string(id) +
+                                   " is carried by no voxel of the label volume");
+    };
+    for (std::size_t i = 0; i < scene.labelTransfers.size(); ++i)
+        check(scene.labelTransfers[i].ids, "/transfer/labels/" + std::to_string(i) + "/labels");
+    for (std::size_t i = 0; i < scene.operators.size(); ++i)
+        check(scene.operators[i].alignment.labels,
+              "/operators/" + std::to_string(i) + "/alignment/labels");
+    return warnings;
 }
 
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {

@@ -53,6 +53,11 @@ float emptyValue(const Scene& scene, const Volume& scan);
 /// with more than one operator (all but the last are baked into the volume).
 bool sequential(const Scene& scene);
 
+/// A warning for each label a scene lists (in /transfer/labels or a segment
+/// alignment's labels) that no voxel of `labels` carries: a typo in an id, or
+/// an atlas table's label this scan lacks.
+std::vector<std::string> absentLabelWarnings(const Scene& scene, const Volume& labels);
+
 /// The volume a frame renders and its value window: the scan itself, or under
 /// sequential composition the scan deformed by every operator but the last
 /// (resampled on the CPU). The window is always the scan's.
