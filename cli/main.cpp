@@ -275,6 +275,80 @@ int outOfMemory() {
     return kExitRuntime;
 }
 
+CLI::App* addRender(CLI::App& app, RenderArgs& args) {
+    CLI::App* render = app.add_subcommand("render", "Render a scene to EXR frames");
+    render->add_option("scene", args.scene, "Scene file (JSON)")->required();
+    render->add_option("-o,--output", args.output,
+                       "Output pattern, e.g. out/frame_####.exr (#### or %04d: frame number)");
+    render->add_option("--frames", args.frames,
+                       "Frames A..B (inclusive) or N; default: the scene's /animation/frames");
+    render->add_option("--shard", args.shard,
+                       "Render only frames f with f mod N == I, e.g. 2/8 (one machine of 8)");
+    render->add_option("--size", args.size, "Image size WIDTHxHEIGHT, e.g. 512x512");
+    render->add_option("--set", args.sets,
+                       "Override a scene value: /json/pointer=VALUE (repeatable), "
+                       "e.g. --set /camera/orbit/azimuth=90");
+    render->add_flag("--png", args.png, "Also write an sRGB PNG preview per frame");
+    render->add_flag("--skip-existing", args.skipExisting,
+                     "Leave frames whose output files exist (resume an interrupted run)");
+    render->add_flag("--fail-fast", args.failFast,
+                     "Stop at the first failed frame (default: render the others, exit non-zero)");
+    render
+        ->add_option("--writers", args.writers,
+                     "Frames whose files are written at once while later frames render "
+                     "(default: one per core, up to 8, within 512 MiB of images)")
+        ->check(CLI::Range(1, cutaway::job::kMostWritersAllowed));
+    render->add_option("--device", args.device,
+                       "Vulkan device: a substring of its name (see `cutaway devices`)");
+    render->add_option("--memory-budget", args.memoryBudget,
+                       "Device memory cutaway may hold at once, e.g. 2G or 512M; past it a "
+                       "frame fails naming the limit (default: the device-local heap)");
+    render->add_flag("-q,--quiet", args.quiet, "Print nothing but errors");
+    return render;
+}
+
+CLI::App* addValidate(CLI::App& app, RenderArgs& args) {
+    CLI::App* validate = app.add_subcommand(
+        "validate", "Check what `render` with the same arguments would refuse: the scene, every "
+                    "frame, the output paths and the files it reads; without a device");
+    validate->add_option("scene", args.scene, "Scene file (JSON)")->required();
+    validate->add_option("-o,--output", args.output, "Output pattern, as for render");
+    validate->add_option("--frames", args.frames, "Frames A..B or N, as for render");
+    validate->add_option("--shard", args.shard, "I/N, as for render");
+    validate->add_option("--size", args.size, "WIDTHxHEIGHT, as for render");
+    validate->add_option("--set", args.sets, "Override a scene value: /json/pointer=VALUE");
+    validate->add_flag("--png", args.png, "PNG previews, as for render");
+    validate->add_flag("-q,--quiet", args.quiet, "Print nothing but errors and the verdict");
+    return validate;
+}
+
+CLI::App* addExport(CLI::App& app, ExportArgs& args) {
+    CLI::App* exportCommand = app.add_subcommand(
+        "export", "Write the deformed volume of one frame as NRRD (for ParaView, 3D Slicer); "
+                  "no device needed");
+    exportCommand->add_option("scene", args.scene, "Scene file (JSON)")->required();
+    exportCommand->add_option("-o,--output", args.output, "Output file, .nrrd")->required();
+    exportCommand->add_option("--frame", args.frame, "Frame of the animation (default: its first)");
+    exportCommand->add_option("--set", args.sets, "Override a scene value: /json/pointer=VALUE");
+    exportCommand->add_option("--labels-output", args.labelsOutput,
+                              "Also write the scene's label volume, deformed alike (.nrrd)");
+    exportCommand
+        ->add_option("--oversample", args.oversample,
+                     "A grid K times finer along each axis (1-4, default 1): cut faces alias K "
+                     "times less")
+        ->check(CLI::Range(1, cutaway::job::kMostOversample));
+    exportCommand->add_flag("--raw", args.raw, "Raw encoding instead of gzip");
+    return exportCommand;
+}
+
+CLI::App* addInfo(CLI::App& app, std::string& file, std::string& series) {
+    CLI::App* info = app.add_subcommand("info", "Describe a volume file (NRRD, NIfTI, MetaImage, DICOM)");
+    info->add_option("file", file, "Volume file, or a DICOM folder, DICOMDIR or file")->required();
+    info->add_option("--series", series,
+                     "The DICOM series to describe: its number, UID or description");
+    return info;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -285,77 +359,13 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("cutaway ") + CUTAWAY_VERSION);
 
-    RenderArgs renderArgs;
-    auto* render = app.add_subcommand("render", "Render a scene to EXR frames");
-    render->add_option("scene", renderArgs.scene, "Scene file (JSON)")->required();
-    render->add_option("-o,--output", renderArgs.output,
-                       "Output pattern, e.g. out/frame_####.exr (#### or %04d: frame number)");
-    render->add_option("--frames", renderArgs.frames,
-                       "Frames A..B (inclusive) or N; default: the scene's /animation/frames");
-    render->add_option("--shard", renderArgs.shard,
-                       "Render only frames f with f mod N == I, e.g. 2/8 (one machine of 8)");
-    render->add_option("--size", renderArgs.size, "Image size WIDTHxHEIGHT, e.g. 512x512");
-    render->add_option("--set", renderArgs.sets,
-                       "Override a scene value: /json/pointer=VALUE (repeatable), "
-                       "e.g. --set /camera/orbit/azimuth=90");
-    render->add_flag("--png", renderArgs.png, "Also write an sRGB PNG preview per frame");
-    render->add_flag("--skip-existing", renderArgs.skipExisting,
-                     "Leave frames whose output files exist (resume an interrupted run)");
-    render->add_flag("--fail-fast", renderArgs.failFast,
-                     "Stop at the first failed frame (default: render the others, exit non-zero)");
-    render
-        ->add_option("--writers", renderArgs.writers,
-                     "Frames whose files are written at once while later frames render "
-                     "(default: one per core, up to 8, within 512 MiB of images)")
-        ->check(CLI::Range(1, cutaway::job::kMostWritersAllowed));
-    render->add_option("--device", renderArgs.device,
-                       "Vulkan device: a substring of its name (see `cutaway devices`)");
-    render->add_option("--memory-budget", renderArgs.memoryBudget,
-                       "Device memory cutaway may hold at once, e.g. 2G or 512M; past it a "
-                       "frame fails naming the limit (default: the device-local heap)");
-    render->add_flag("-q,--quiet", renderArgs.quiet, "Print nothing but errors");
-
-    RenderArgs validateArgs;
-    auto* validate = app.add_subcommand(
-        "validate", "Check what `render` with the same arguments would refuse: the scene, every "
-                    "frame, the output paths and the files it reads; without a device");
-    validate->add_option("scene", validateArgs.scene, "Scene file (JSON)")->required();
-    validate->add_option("-o,--output", validateArgs.output, "Output pattern, as for render");
-    validate->add_option("--frames", validateArgs.frames, "Frames A..B or N, as for render");
-    validate->add_option("--shard", validateArgs.shard, "I/N, as for render");
-    validate->add_option("--size", validateArgs.size, "WIDTHxHEIGHT, as for render");
-    validate->add_option("--set", validateArgs.sets, "Override a scene value: /json/pointer=VALUE");
-    validate->add_flag("--png", validateArgs.png, "PNG previews, as for render");
-    validate->add_flag("-q,--quiet", validateArgs.quiet,
-                       "Print nothing but errors and the verdict");
-
+    RenderArgs renderArgs, validateArgs;
     ExportArgs exportArgs;
-    auto* exportCommand = app.add_subcommand(
-        "export", "Write the deformed volume of one frame as NRRD (for ParaView, 3D Slicer); "
-                  "no device needed");
-    exportCommand->add_option("scene", exportArgs.scene, "Scene file (JSON)")->required();
-    exportCommand->add_option("-o,--output", exportArgs.output, "Output file, .nrrd")->required();
-    exportCommand->add_option("--frame", exportArgs.frame,
-                              "Frame of the animation (default: its first)");
-    exportCommand->add_option("--set", exportArgs.sets,
-                              "Override a scene value: /json/pointer=VALUE");
-    exportCommand->add_option("--labels-output", exportArgs.labelsOutput,
-                              "Also write the scene's label volume, deformed alike (.nrrd)");
-    exportCommand
-        ->add_option("--oversample", exportArgs.oversample,
-                     "A grid K times finer along each axis (1-4, default 1): cut faces alias K "
-                     "times less")
-        ->check(CLI::Range(1, cutaway::job::kMostOversample));
-    exportCommand->add_flag("--raw", exportArgs.raw, "Raw encoding instead of gzip");
-
-    std::string infoFile;
-    auto* info = app.add_subcommand("info", "Describe a volume file (NRRD, NIfTI, DICOM)");
-    info->add_option("file", infoFile, "Volume file, or a DICOM folder, DICOMDIR or file")
-        ->required();
-    std::string infoSeries;
-    info->add_option("--series", infoSeries,
-                     "The DICOM series to describe: its number, UID or description");
-
+    std::string infoFile, infoSeries;
+    CLI::App* render = addRender(app, renderArgs);
+    CLI::App* validate = addValidate(app, validateArgs);
+    CLI::App* exportCommand = addExport(app, exportArgs);
+    CLI::App* info = addInfo(app, infoFile, infoSeries);
     auto* devices = app.add_subcommand("devices", "List the Vulkan devices");
 
     try {
