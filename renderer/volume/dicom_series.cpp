@@ -110,6 +110,7 @@ DicomListing listDicom(const fs::path& path) {
         throw InputError(path.string() + ": could not scan its files for DICOM series");
     DicomListing listing;
     std::map<std::string, DicomSeries> byUid;
+    const bool namesOneFile = fs::is_regular_file(path, ec) && !isDicomdir(path);
     for (const std::string& file : files) {
         const std::string uid = valueOf(scanner, file, kSeriesUid);
         // Not DICOM, or no image (a DICOMDIR, a structured report).
@@ -131,11 +132,9 @@ DicomListing listDicom(const fs::path& path) {
         }
         s.files.push_back(file);
         s.dims.z = int(s.files.size());
-        if (!fs::is_directory(path, ec) && !isDicomdir(path) &&
-            fs::equivalent(fs::path(file), path, ec))
-            listing.namedUid = uid;
+        if (namesOneFile && fs::equivalent(fs::path(file), path, ec)) listing.namedUid = uid;
     }
-    if (fs::is_regular_file(path, ec) && !isDicomdir(path) && listing.namedUid.empty())
+    if (namesOneFile && listing.namedUid.empty())
         throw InputError(path.string() + ": not a DICOM image");
     for (auto& [uid, s] : byUid)
         listing.series.push_back(std::move(s));

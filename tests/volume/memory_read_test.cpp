@@ -21,16 +21,6 @@ std::vector<std::byte> contentOf(const std::filesystem::path& file) {
     return bytes;
 }
 
-void expectIdentical(const Volume& a, const Volume& b) {
-    EXPECT_EQ(a.dims, b.dims);
-    EXPECT_EQ(a.type, b.type);
-    EXPECT_EQ(a.spacing, b.spacing);
-    EXPECT_EQ(a.origin, b.origin);
-    EXPECT_EQ(a.slope, b.slope);
-    EXPECT_EQ(a.inter, b.inter);
-    EXPECT_TRUE(a.data == b.data);
-}
-
 template <typename FromFile, typename FromBytes>
 void compareReaders(const std::vector<std::filesystem::path>& files, FromFile fromFile,
                     FromBytes fromBytes, bool allValid = false) {
@@ -46,7 +36,7 @@ void compareReaders(const std::vector<std::filesystem::path>& files, FromFile fr
         const std::string bytesError = inputError([&] { got = fromBytes(bytes, file.string()); });
         if (expected) {
             ASSERT_TRUE(got) << bytesError;
-            expectIdentical(*expected, *got);
+            expectSameVolume(*expected, *got);
         } else {
             EXPECT_EQ(fileError, bytesError);
         }

@@ -141,6 +141,19 @@ struct NiftiHeader {
     }
 };
 
+/// Two reads of the same volume: grid, type, geometry, scaling and bytes.
+inline void expectSameVolume(const Volume& a, const Volume& b) {
+    EXPECT_EQ(a.dims, b.dims);
+    EXPECT_EQ(a.type, b.type);
+    EXPECT_EQ(a.spacing, b.spacing);
+    EXPECT_EQ(a.direction, b.direction);
+    EXPECT_EQ(a.origin, b.origin);
+    EXPECT_EQ(a.space, b.space);
+    EXPECT_EQ(a.slope, b.slope);
+    EXPECT_EQ(a.inter, b.inter);
+    EXPECT_TRUE(a.data == b.data);
+}
+
 /// The message of the InputError that `f` throws ("" when none is thrown).
 template <typename F>
 std::string inputError(F&& f) {
