@@ -207,4 +207,16 @@ Volume readMetaImageBytes(std::span<const std::byte> bytes, const std::string& n
     return readMetaImageStream(in, bytes.size(), name, std::nullopt);
 }
 
+std::optional<std::filesystem::path> metaImageDataFile(const std::filesystem::path& path) {
+    try {
+        InputFile file(path, "volume");
+        const std::string name = *readHeader(file.stream(), path.string()).get("elementdatafile");
+        if (toLower(name) == "local") return std::nullopt;
+        const std::filesystem::path data(name);
+        return data.is_relative() ? path.parent_path() / data : data;
+    } catch (const InputError&) {
+        return std::nullopt; // reading the volume says what is wrong with it
+    }
+}
+
 } // namespace cutaway

@@ -6,7 +6,6 @@
 #include "core/error.hpp"
 #include "io/input_file.hpp"
 #include "volume/byte_order.hpp"
-#include "volume/dicom.hpp"
 #include "volume/gzip.hpp"
 #include "volume/io_util.hpp"
 #include "volume/nrrd_header.hpp"
@@ -399,31 +398,17 @@ Volume readNrrdBytes(std::span<const std::byte> bytes, const std::string& name,
     return readNrrdStream(in, bytes.size(), name, dataFolder);
 }
 
-std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path) {
-    std::vector<std::filesystem::path> files{path};
-    if (isDicomPath(path)) {
-        try {
-            for (const DicomSeries& series : listDicom(path).series)
-                files.insert(files.end(), series.files.begin(), series.files.end());
-        } catch (const InputError&) {
-            // Reading the volume says what is wrong with it.
-        }
-        return files;
-    }
-    const std::string name = detail::toLower(path.filename().string());
-    if (!name.ends_with(".nrrd") && !name.ends_with(".nhdr")) return files;
+std::optional<std::filesystem::path> nrrdDataFile(const std::filesystem::path& path) {
     try {
         InputFile file(path, "volume");
         bool endedByBlankLine = false;
         const detail::NrrdFields f = readNrrdHeader(file.stream(), path.string(), endedByBlankLine);
-        if (f.dataFile) {
-            const std::filesystem::path data(std::string(trim(*f.dataFile)));
-            files.push_back(data.is_relative() ? path.parent_path() / data : data);
-        }
+        if (!f.dataFile) return std::nullopt;
+        const std::filesystem::path data(std::string(trim(*f.dataFile)));
+        return data.is_relative() ? path.parent_path() / data : data;
     } catch (const InputError&) {
-        // Reading the volume says what is wrong with it.
+        return std::nullopt; // reading the volume says what is wrong with it
     }
-    return files;
 }
 
 } // namespace cutaway

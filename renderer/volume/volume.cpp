@@ -215,4 +215,24 @@ Volume readVolume(const std::filesystem::path& path) {
         "raw files need an explicit layout)");
 }
 
+std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path) {
+    std::vector<std::filesystem::path> files{path};
+    const std::string name = detail::toLower(path.filename().string());
+    std::optional<std::filesystem::path> data;
+    if (endsWith(name, ".nrrd") || endsWith(name, ".nhdr")) {
+        data = nrrdDataFile(path);
+    } else if (endsWith(name, ".mha") || endsWith(name, ".mhd")) {
+        data = metaImageDataFile(path);
+    } else if (isDicomPath(path)) {
+        try {
+            for (const DicomSeries& series : listDicom(path).series)
+                files.insert(files.end(), series.files.begin(), series.files.end());
+        } catch (const InputError&) {
+            // Reading the volume says what is wrong with it.
+        }
+    }
+    if (data) files.push_back(*data);
+    return files;
+}
+
 } // namespace cutaway

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <glm/glm.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -112,9 +113,13 @@ Volume readNifti(const std::filesystem::path& path);
 Volume readMetaImage(const std::filesystem::path& path);
 Volume readRaw(const std::filesystem::path& path, const RawLayout& layout);
 /// The files reading the volume `path` reads: the file itself and, for a
-/// detached NRRD header, its data file. A header that cannot be read gives
+/// detached NRRD or MetaImage header, its data file; for DICOM, the folder or
+/// DICOMDIR and every file of its series. A header that cannot be read gives
 /// the file alone (reading it then says what is wrong).
 std::vector<std::filesystem::path> volumeFiles(const std::filesystem::path& path);
+/// The data file a detached header names (nullopt: attached, or unreadable).
+std::optional<std::filesystem::path> nrrdDataFile(const std::filesystem::path& path);
+std::optional<std::filesystem::path> metaImageDataFile(const std::filesystem::path& path);
 /// The NRRD and NIfTI readers over a file's bytes already in memory (not
 /// copied); `name` stands for the file in messages. A NRRD header read this way
 /// cannot name a detached data file (there is no folder to find it in).

@@ -181,5 +181,31 @@ TEST_F(Dicom, ADicomdirReadsItsSeries) {
     EXPECT_FALSE(isDicomPath(path("source.nrrd")));
 }
 
+// The same checks on a real scan, the shared CT head (64 x 64 x 93 uint16,
+// 3.2 x 3.2 x 1.5 mm): shuffled JPEG-lossless files of unsigned pixels with a
+// rescale, and a signed oblique series as scanners store CT (intercept -1024).
+TEST_F(Dicom, ASharedScanReadsBackToTheVoxel) {
+    const fs::path scan = fs::path(CUTAWAY_SOURCE_DIR) / ".." / "shared" / "data" / "headsq.nrrd";
+    if (!fs::exists(scan)) GTEST_SKIP() << scan << " not found: the shared scans are absent";
+    const Volume expected = readVolume(scan);
+    const std::string script = std::string(CUTAWAY_SOURCE_DIR) + "/scripts/write_dicom.py ";
+    for (const std::string options :
+         {"--shuffle --unsigned --slope 1 --intercept -1024 --jpeg-lossless",
+          "--slope 1 --intercept -1024 --oblique 20"}) {
+        SCOPED_TRACE(options);
+        const fs::path folder =
+            path(options.find("oblique") != std::string::npos ? "oblique" : "jpeg");
+        const std::string command = "/usr/bin/python3 " + script + scan.string() + " " +
+                                    folder.string() + " " + options + " > /dev/null";
+        ASSERT_EQ(std::system(command.c_str()), 0) << command;
+        const Volume v = readDicom(folder);
+        expectSameValues(v, expected);
+        EXPECT_NEAR(v.spacing.x, 3.2, 1e-6);
+        EXPECT_NEAR(v.spacing.z, 1.5, 1e-6);
+        // The series' files are what a run reads: the folder and each slice.
+        EXPECT_EQ(volumeFiles(folder).size(), std::size_t(expected.dims.z) + 1);
+    }
+}
+
 } // namespace
 } // namespace cutaway::test

@@ -6,6 +6,8 @@
 namespace cutaway::test {
 namespace {
 
+namespace fs = std::filesystem;
+
 // 4 x 3 x 2 int16 voxels, value = 100 x + 10 y + z - 50 (x fastest).
 std::vector<std::int16_t> mhaVoxels() {
     std::vector<std::int16_t> v;
@@ -83,6 +85,19 @@ TEST_F(MetaImage, AnMhdReadsItsDataFileWithHeaderSizeAndByteOrder) {
     // Control: read little endian, the same bytes are other numbers.
     const Volume swapped = readVolume(writeFile("c.mhd", mhaHeader("HeaderSize = 7\n", "a.raw")));
     EXPECT_NE(swapped.value(1), mhaVoxels()[1]);
+}
+
+// The files a run reads, as output paths are checked against them: a .mhd
+// and the data file it names; a .mha with LOCAL data alone.
+TEST_F(MetaImage, TheFilesAnMhdReadsIncludeItsDataFile) {
+    writeFile("d.raw", mhaBytes());
+    const fs::path mhd = writeFile("d.mhd", mhaHeader("", "d.raw"));
+    EXPECT_EQ(volumeFiles(mhd), (std::vector<fs::path>{mhd, path("d.raw")}));
+    const fs::path mha = writeFile("d.mha", mhaHeader("", "LOCAL") + mhaBytes());
+    EXPECT_EQ(volumeFiles(mha), std::vector<fs::path>{mha});
+    // A header that cannot be read gives the file alone.
+    const fs::path bad = writeFile("bad.mhd", "not a header\n");
+    EXPECT_EQ(volumeFiles(bad), std::vector<fs::path>{bad});
 }
 
 TEST_F(MetaImage, CompressedDataIsZlib) {
