@@ -6,6 +6,7 @@
 #include "job/render_job.hpp"
 #include "job/scene_check.hpp"
 #include "job/sequence.hpp"
+#include "job/volume_frame.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/classify/label_classes.hpp"
 #include "volume/otsu.hpp"
@@ -34,10 +35,11 @@ std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
     return bake::smoothMaskCpu(indicator, volume.dims, volume.spacing, a.band);
 }
 
-Exported exportVolume(const Scene& scene, bool withLabels, int oversample) {
-    if (withLabels && !scene.labels) throw InputError("the scene has no /labels to export");
+Exported exportVolume(const Scene& given, bool withLabels, int oversample) {
+    if (withLabels && !given.labels) throw InputError("the scene has no /labels to export");
     std::size_t nonFinite = 0;
-    auto scan = std::make_shared<Volume>(loadSceneVolume(scene, &nonFinite));
+    auto scan = std::make_shared<Volume>(loadSceneVolume(given, &nonFinite));
+    const Scene scene = inVolumeFrame(given, *scan); // placements in LPS or RAS placed
     Exported result;
     if (nonFinite > 0)
         result.warnings.push_back(nonFiniteWarning(scene, nonFinite, scan->voxelCount()));

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "job/address_space.hpp"
 #include "job/scene_check.hpp"
+#include "job/volume_frame.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/volume_renderer.hpp"
 
@@ -22,28 +23,29 @@ void applyOverrides(Scene& scene, const RenderOverrides& overrides) {
 
 FrameRenderer::FrameRenderer(const gpu::Context& ctx) : m_ctx(ctx), m_baker(ctx), m_renderer(ctx) {}
 
-Image FrameRenderer::render(const Scene& scene) {
+Image FrameRenderer::render(const Scene& given) {
     // Same key, same volume: its texture and gradients are kept.
-    FrameVolumeKey key = frameVolumeKey(scene);
+    FrameVolumeKey key = frameVolumeKey(given);
     if (!m_volume || m_volumeKey != key) {
         m_volume.reset(); // free the old textures before making new ones
-        FrameVolume fv = frameVolume(scene);
+        FrameVolume fv = frameVolume(given);
+        m_geometry = std::move(fv.geometry);
         // Before the upload and the pipelines: past the limit, the driver fails inside.
-        checkAddressSpace(addressSpaceNeed(scene, fv.scan.get(), fv.labels.get()));
+        checkAddressSpace(addressSpaceNeed(given, fv.scan.get(), fv.labels.get()));
         const glm::ivec3 dims = fv.scan->dims;
         if (fv.nonFinite > 0 && std::find(m_warnedNonFinite.begin(), m_warnedNonFinite.end(),
                                           key) == m_warnedNonFinite.end()) {
             m_warnedNonFinite.push_back(key);
-            m_warnings.push_back(nonFiniteWarning(scene, fv.nonFinite, fv.scan->voxelCount()));
+            m_warnings.push_back(nonFiniteWarning(given, fv.nonFinite, fv.scan->voxelCount()));
         }
         if (fv.labels)
-            for (std::string& w : absentLabelWarnings(scene, *fv.labels))
+            for (std::string& w : absentLabelWarnings(given, *fv.labels))
                 if (m_warnedLabels.insert(w).second) m_warnings.push_back(std::move(w));
         try {
             m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
                 m_ctx, m_baker, std::move(fv.scan), fv.window, fv.worldLo, std::move(fv.labels)));
         } catch (const ResourceError& e) {
-            const VolumeSource& v = scene.volume;
+            const VolumeSource& v = given.volume;
             throw ResourceError("the volume " +
                                 (v.phantom.empty() ? v.file.string() : "phantom " + v.phantom) +
                                 " (" + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
@@ -52,8 +54,10 @@ Image FrameRenderer::render(const Scene& scene) {
         m_volumeKey = std::move(key);
         ++m_uploads;
     } else {
-        checkAddressSpace(addressSpaceNeed(scene, m_volume->scan.get(), m_volume->labels.get()));
+        checkAddressSpace(addressSpaceNeed(given, m_volume->scan.get(), m_volume->labels.get()));
     }
+    // Placements given in LPS or RAS, in the volume frame from here on.
+    const Scene scene = inVolumeFrame(given, m_geometry);
     warnOfOperatorsOutside(scene);
     Scene live = scene;
     // Attached meshes are placed in the world first: under sequential

@@ -63,6 +63,7 @@ private:
     render::VolumeRenderer m_renderer;
     std::unique_ptr<render::GpuVolume> m_volume;
     std::optional<FrameVolumeKey> m_volumeKey;
+    Volume m_geometry; ///< the scan's as loaded: places LPS and RAS (job/volume_frame.hpp)
     int m_uploads = 0;
     std::vector<std::string> m_warnings;
     std::set<std::size_t> m_warnedOutside;         ///< operator indices already warned of

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "job/render_job.hpp"
+#include "job/volume_frame.hpp"
 #include "mesh/mesh.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/classify/label_classes.hpp"
@@ -20,9 +21,10 @@ std::vector<OperatorOutside> operatorsOutside(const Scene& scene, glm::dvec3 lo,
     for (std::size_t i = 0; i < scene.operators.size(); ++i) {
         const OperatorSpec& op = scene.operators[i];
         if (operators::intersects(operators::WorldBox{op.localToWorld, {}}, volume)) continue;
-        outside.push_back({i, "/operators/" + std::to_string(i) + ": \"" + op.name +
-                                  "\" lies outside the volume, so it changes nothing; "
-                                  "placements are in mm with the volume's centre at the origin"});
+        outside.push_back(
+            {i, "/operators/" + std::to_string(i) + ": \"" + op.name +
+                    "\" lies outside the volume, so it changes nothing; "
+                    "\"volume\" placements are in mm with the volume's centre at the origin"});
     }
     return outside;
 }
@@ -74,9 +76,10 @@ std::size_t SceneFileCheck::filesOf(const Scene& scene) {
     return static_cast<std::size_t>(it - m_files.begin());
 }
 
-void SceneFileCheck::frame(const Scene& scene) {
-    const std::size_t filesIndex = filesOf(scene);
+void SceneFileCheck::frame(const Scene& given) {
+    const std::size_t filesIndex = filesOf(given);
     const Files& files = m_files[filesIndex];
+    const Scene scene = inVolumeFrame(given, *files.scan); // LPS and RAS placed as a render does
     if (!sequential(scene)) {
         // What each frame's render refuses before it draws: overlapping
         // operators, a segment without voxels (its scan and labels as read).

@@ -1,6 +1,7 @@
 #include "job/scene_data.hpp"
 
 #include "core/error.hpp"
+#include "job/volume_frame.hpp"
 #include "operators/deformed_volume.hpp"
 #include "volume/dicom.hpp"
 #include "volume/phantom.hpp"
@@ -152,9 +153,11 @@ FrameVolume frameVolume(const Scene& scene) {
     }
     const bake::ValueWindow window = sceneWindow(scene, scan);
     const float empty = sequential(scene) ? emptyValue(scene, scan) : 0.0f;
+    Volume geometry = geometryOf(scan);
     operators::PlacedVolume placed = operators::centred(std::move(scan));
     if (sequential(scene)) {
-        const std::vector<OperatorSpec> baked(scene.operators.begin(), scene.operators.end() - 1);
+        const Scene framed = inVolumeFrame(scene, geometry);
+        const std::vector<OperatorSpec> baked(framed.operators.begin(), framed.operators.end() - 1);
         placed = operators::resampleSequentially(placed, baked, empty);
     }
     auto shared = std::make_shared<const Volume>(std::move(placed.volume));
@@ -165,7 +168,8 @@ FrameVolume frameVolume(const Scene& scene) {
         sequential(scene) ? nullptr
         : phantomLabels   ? checkedLabels(scene, std::move(*phantomLabels), *shared)
                           : loadSceneLabels(scene, shared);
-    return FrameVolume{std::move(shared), placed.worldLo, window, std::move(labels), nonFinite};
+    return FrameVolume{std::move(shared), placed.worldLo, window,
+                       std::move(labels), nonFinite,      std::move(geometry)};
 }
 
 FrameVolumeKey frameVolumeKey(const Scene& scene) {
@@ -184,6 +188,7 @@ FrameVolumeKey frameVolumeKey(const Scene& scene) {
             static_assert(sizeof op.params == sizeof params);
             std::memcpy(params.data(), &op.params, sizeof params);
             key.bakedPlacements.push_back(op.localToWorld);
+            key.bakedSpaces.push_back(op.space);
         }
     }
     return key;

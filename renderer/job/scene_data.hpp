@@ -67,6 +67,9 @@ struct FrameVolume {
     bake::ValueWindow window;
     std::shared_ptr<const Volume> labels; ///< on the scan's grid (maybe the scan), or null
     std::size_t nonFinite = 0; ///< NaN and infinite voxels the scan's file held (now empty)
+    /// The scan's geometry as loaded (no voxels), which places what a scene
+    /// gives in LPS or RAS (job/volume_frame.hpp).
+    Volume geometry;
 };
 FrameVolume frameVolume(const Scene& scene);
 
@@ -80,6 +83,7 @@ struct FrameVolumeKey {
     bool labelsPhantom = false;
     std::vector<std::array<float, 12>> bakedParams; ///< sequential: the baked operators'
     std::vector<glm::dmat4> bakedPlacements;
+    std::vector<CoordinateSpace> bakedSpaces; ///< the frames bakedPlacements are in
     bool operator==(const FrameVolumeKey&) const = default;
 };
 FrameVolumeKey frameVolumeKey(const Scene& scene);

@@ -27,18 +27,18 @@ CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width,
     const double fovX = 2.0 * std::atan(std::tan(fovY / 2.0) * aspect);
     const double fitDistance = radius / std::sin(std::min(fovX, fovY) / 2.0) * 1.05;
 
-    glm::dvec3 target, eye, up;
+    // Directions given in LPS or RAS (Camera::directionsToVolume).
+    const glm::dmat3& toVolume = camera.directionsToVolume;
+    const glm::dvec3 target = camera.target;
+    const glm::dvec3 up = toVolume * camera.up;
+    glm::dvec3 eye = camera.eye;
     if (camera.useOrbit) {
-        target = camera.target;
-        up = camera.up;
         double distance = camera.distance > 0.0 ? camera.distance : fitDistance;
         if (camera.projection == Projection::Orthographic && camera.distance <= 0.0)
             distance = 3.0 * radius;
-        eye = target + distance * orbitDirection(camera.azimuthDeg, camera.elevationDeg, up);
-    } else {
-        target = camera.target;
-        eye = camera.eye;
-        up = camera.up;
+        glm::dvec3 toEye = orbitDirection(camera.azimuthDeg, camera.elevationDeg, camera.up);
+        if (toVolume != glm::dmat3(1.0)) toEye = glm::normalize(toVolume * toEye);
+        eye = target + distance * toEye;
     }
     m.perspective = camera.projection == Projection::Perspective;
     m.eye = eye;

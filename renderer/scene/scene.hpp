@@ -70,6 +70,13 @@ struct LabelSource {
 
 enum class Projection { Perspective, Orthographic };
 
+/// The frame a placement's coordinates are in ("space"): the volume frame
+/// (mm along the voxel grid's axes, the volume's centre at the origin), or the
+/// scan's own physical coordinates, LPS (as `cutaway info` prints them) or RAS
+/// (as 3D Slicer and MNI atlases show them). job/volume_frame.hpp turns
+/// LPS and RAS into the volume frame once the scan's geometry is known.
+enum class CoordinateSpace { Volume, LPS, RAS };
+
 /// /camera: either an orbit around a target (default the volume centre) or a
 /// look-at. Distance 0 means "fit the volume's bounding sphere in view".
 struct Camera {
@@ -86,6 +93,12 @@ struct Camera {
     glm::dvec3 up{0.0, 0.0, 1.0};
     // look_at
     glm::dvec3 eye{0.0, -500.0, 0.0};
+    /// /camera/orbit/space or /camera/look_at/space: the frame of `target`,
+    /// `eye` and `up` (and of the orbit's directions).
+    CoordinateSpace space = CoordinateSpace::Volume;
+    /// Turns directions (`up`, the orbit's) into the volume frame: identity
+    /// until job/volume_frame.hpp places a camera given in LPS or RAS.
+    glm::dmat3 directionsToVolume{1.0};
 };
 
 struct DirectionalLight {
@@ -282,6 +295,8 @@ struct OperatorSpec {
     OperatorGlyph glyph;       ///< /operators/N/glyph
     std::optional<CutFace> cutFace; ///< /operators/N/cut_face; none: the data's own colour
     int index = 0;                  ///< N, for messages that point into the scene
+    /// /operators/N/placement/space: the frame `localToWorld` maps into.
+    CoordinateSpace space = CoordinateSpace::Volume;
 };
 
 /// /meshes/N: an opaque glTF 2.0 model (.gltf or .glb) drawn with depth before
@@ -295,6 +310,8 @@ struct MeshSpec {
     /// axes, no scale) is the parent, so the mesh moves with it; none = world.
     std::optional<int> attach;
     std::string name; ///< /meshes/N/name, for messages; default "mesh N"
+    /// /meshes/N/placement/space: the frame `placement` maps into (not with `attach`).
+    CoordinateSpace space = CoordinateSpace::Volume;
 };
 
 struct Scene {

@@ -33,8 +33,11 @@ std::string formatVector(const glm::dvec3& v) {
 ///  * target     [number x3], mm, world space, each in [-1e6, 1e6], default [0, 0, 0]
 ///               (the volume's centre)
 ///  * up         [number x3], world space, non-zero, default [0, 0, 1]
+///  * space      "volume" | "lps" | "ras", default "volume": the frame of
+///               `target` and `up` (scene.hpp, CoordinateSpace)
 void parseOrbit(JsonReader& reader, Camera& camera) {
     camera.useOrbit = true;
+    camera.space = readSpace(reader);
     camera.azimuthDeg = reader.number("azimuth", camera.azimuthDeg, -36000.0, 36000.0);
     camera.elevationDeg = reader.number("elevation", camera.elevationDeg, Range::open(-90.0, 90.0));
     camera.distance = reader.number("distance", camera.distance, 0.0, kMaxCoordinate);
@@ -49,8 +52,10 @@ void parseOrbit(JsonReader& reader, Camera& camera) {
 ///  * target  [number x3], mm, world space, each in [-1e6, 1e6], default [0, 0, 0]
 ///  * up      [number x3], world space, non-zero and not parallel to
 ///            target - eye, default [0, 0, 1]
+///  * space   "volume" | "lps" | "ras", default "volume": the frame of the three
 void parseLookAt(JsonReader& reader, Camera& camera) {
     camera.useOrbit = false;
+    camera.space = readSpace(reader);
     const auto eye = reader.vec3("eye", kCoordinate, true);
     const auto target = reader.vec3("target", kCoordinate);
     const auto up = readDirection(reader, "up", false);
@@ -77,6 +82,13 @@ void parseLookAt(JsonReader& reader, Camera& camera) {
 }
 
 } // namespace
+
+CoordinateSpace readSpace(JsonReader& reader) {
+    const std::string space = reader.string("space", "volume", {"volume", "lps", "ras"});
+    return space == "lps"   ? CoordinateSpace::LPS
+           : space == "ras" ? CoordinateSpace::RAS
+                            : CoordinateSpace::Volume;
+}
 
 std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required) {
     const auto direction = reader.vec3(key, kCoordinate, required);

@@ -15,6 +15,8 @@ namespace {
 ///               (an operator's scale is its box size; a mesh's is a factor)
 ///  * units      "m" | "mm", default "m": the model's length unit. glTF models
 ///               are in metres by the glTF specification, so "m" multiplies by 1000.
+///  * space      "volume" | "lps" | "ras", default "volume": the frame the model is
+///               placed in (scene.hpp, CoordinateSpace); not with `attach`
 glm::dmat4 parseMeshPlacement(JsonReader& r) {
     const glm::dvec3 t = r.vec3("translate", glm::dvec3(0.0), Range::closed(-1e6, 1e6));
     const glm::dvec3 deg = r.vec3("rotate", glm::dvec3(0.0), Range::closed(-36000, 36000));
@@ -54,7 +56,10 @@ void parseMeshes(JsonReader& root, std::vector<MeshSpec>& meshes, std::size_t op
             r.error("file", "expected a glTF 2.0 model (.gltf or .glb), got \"" +
                                 mesh.file.filename().string() + "\"");
         mesh.name = r.string("name", "mesh " + std::to_string(index));
-        r.object("placement", [&](JsonReader& p) { mesh.placement = parseMeshPlacement(p); });
+        r.object("placement", [&](JsonReader& p) {
+            mesh.space = readSpace(p);
+            mesh.placement = parseMeshPlacement(p);
+        });
         if (!r.has("placement")) mesh.placement = glm::scale(glm::dmat4(1.0), glm::dvec3(1000.0));
         mesh.color = r.colour("color");
         if (r.has("attach")) {
@@ -67,6 +72,10 @@ void parseMeshes(JsonReader& root, std::vector<MeshSpec>& meshes, std::size_t op
             } else if (const auto i = r.integer("attach", {0, limit - 1})) {
                 mesh.attach = static_cast<int>(*i);
             }
+            if (mesh.space != CoordinateSpace::Volume)
+                r.diagnostics().error(r.pointerOf("placement") + "/space",
+                                      "an attached mesh is placed in its operator's frame: "
+                                      "leave out \"space\" or \"attach\"");
         }
         meshes.push_back(mesh);
     });

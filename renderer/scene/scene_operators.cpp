@@ -25,6 +25,9 @@ constexpr double kPi = 3.14159265358979323846;
 ///  or instead of the three:
 ///  * matrix     [number x16], row-major 4x4 affine map from the unit box to the world
 ///               (last row 0 0 0 1, invertible)
+///  * space      "volume" | "lps" | "ras", default "volume": the frame the box is
+///               placed in (scene.hpp, CoordinateSpace); its axes and rotations
+///               are that frame's axes
 glm::dmat4 parsePlacement(JsonReader& r, glm::dvec3& halfSize) {
     if (const nlohmann::json* m = r.find("matrix")) {
         for (const char* key : {"translate", "rotate", "scale"})
@@ -267,7 +270,11 @@ void parseOperators(JsonReader& root, std::vector<OperatorSpec>& operators,
         op.index = static_cast<int>(index);
         glm::dvec3 halfSize(1.0);
         r.object(
-            "placement", [&](JsonReader& p) { op.localToWorld = parsePlacement(p, halfSize); },
+            "placement",
+            [&](JsonReader& p) {
+                op.space = readSpace(p);
+                op.localToWorld = parsePlacement(p, halfSize);
+            },
             true);
         r.object("alignment", [&](JsonReader& a) { op.alignment = parseAlignment(a, labels); });
         const auto resolution = r.integer("resolution", 64, 8, 256);

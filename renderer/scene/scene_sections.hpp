@@ -53,6 +53,10 @@ glm::dmat4 translateRotate(glm::dvec3 translate, glm::dvec3 rotateDeg);
 std::filesystem::path readExistingFile(JsonReader& reader, std::string_view key,
                                        const std::filesystem::path& baseDir, bool folders = false);
 
+/// Reads "space" ("volume" | "lps" | "ras", default "volume"): the frame of a
+/// placement's coordinates.
+CoordinateSpace readSpace(JsonReader& reader);
+
 /// Reads a direction: 3 numbers in [-kMaxCoordinate, kMaxCoordinate], not all zero.
 std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key, bool required);
 

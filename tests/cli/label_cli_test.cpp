@@ -18,7 +18,7 @@ std::string sceneListing(const std::string& labels) {
 
 TEST_F(CliTest, ALabelNoVoxelCarriesIsWarnedOf) {
     const auto scene = write("s.json", sceneListing(R"(["skull", 77])"));
-    for (const std::string command :
+    for (const std::string& command :
          {"validate " + scene.string(),
           "render " + scene.string() + " -o " + (m_dir / "f_#.exr").string()}) {
         SCOPED_TRACE(command);

@@ -41,7 +41,7 @@ TEST_F(CliTest, ABrokenMeshIsBadInputNamingTheFile) {
     fs::create_directories(m_dir);
     std::ofstream(m_dir / "broken.glb") << "glTF but not really";
     const fs::path scene = writeScene(m_dir, "broken.glb");
-    for (const std::string command : {"validate ", "render "}) {
+    for (const char* command : {"validate ", "render "}) {
         const CommandResult r = runCutaway(command + scene.string());
         EXPECT_EQ(r.code, 2) << command << r.output;
         EXPECT_NE(r.output.find((m_dir / "broken.glb").string()), std::string::npos) << r.output;

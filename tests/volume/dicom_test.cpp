@@ -189,12 +189,11 @@ TEST_F(Dicom, ASharedScanReadsBackToTheVoxel) {
     if (!fs::exists(scan)) GTEST_SKIP() << scan << " not found: the shared scans are absent";
     const Volume expected = readVolume(scan);
     const std::string script = std::string(CUTAWAY_SOURCE_DIR) + "/scripts/write_dicom.py ";
-    for (const std::string options :
-         {"--shuffle --unsigned --slope 1 --intercept -1024 --jpeg-lossless",
-          "--slope 1 --intercept -1024 --oblique 20"}) {
+    for (const char* options : {"--shuffle --unsigned --slope 1 --intercept -1024 --jpeg-lossless",
+                                "--slope 1 --intercept -1024 --oblique 20"}) {
         SCOPED_TRACE(options);
         const fs::path folder =
-            path(options.find("oblique") != std::string::npos ? "oblique" : "jpeg");
+            path(std::string(options).find("oblique") != std::string::npos ? "oblique" : "jpeg");
         const std::string command = "/usr/bin/python3 " + script + scan.string() + " " +
                                     folder.string() + " " + options + " > /dev/null";
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
