@@ -4,7 +4,7 @@
 //                  [--set /json/pointer=VALUE ...] [--png] [--skip-existing] [--fail-fast]
 //                  [--writers N] [--device NAME] [--memory-budget SIZE] [--quiet]
 //   cutaway validate SCENE [--set ...]
-//   cutaway export SCENE [--frame N] -o OUT.nrrd [--labels-output L.nrrd] [--set ...]
+//   cutaway export SCENE [--frame N] -o OUT.nrrd|.nii[.gz] [--labels-output L] [--set ...]
 //                  [--oversample K] [--raw]
 //   cutaway info FILE [--series S]
 //   cutaway devices
@@ -324,20 +324,20 @@ CLI::App* addValidate(CLI::App& app, RenderArgs& args) {
 
 CLI::App* addExport(CLI::App& app, ExportArgs& args) {
     CLI::App* exportCommand = app.add_subcommand(
-        "export", "Write the deformed volume of one frame as NRRD (for ParaView, 3D Slicer); "
-                  "no device needed");
+        "export", "Write the deformed volume of one frame as NRRD or NIfTI (for ParaView, "
+                  "3D Slicer, nibabel); no device needed");
     exportCommand->add_option("scene", args.scene, "Scene file (JSON)")->required();
-    exportCommand->add_option("-o,--output", args.output, "Output file, .nrrd")->required();
+    exportCommand->add_option("-o,--output", args.output, "Output file: .nrrd, .nii or .nii.gz")->required();
     exportCommand->add_option("--frame", args.frame, "Frame of the animation (default: its first)");
     exportCommand->add_option("--set", args.sets, "Override a scene value: /json/pointer=VALUE");
     exportCommand->add_option("--labels-output", args.labelsOutput,
-                              "Also write the scene's label volume, deformed alike (.nrrd)");
+                              "Also write the scene's label volume, deformed alike (.nrrd, .nii, .nii.gz)");
     exportCommand
         ->add_option("--oversample", args.oversample,
                      "A grid K times finer along each axis (1-4, default 1): cut faces alias K "
                      "times less")
         ->check(CLI::Range(1, cutaway::job::kMostOversample));
-    exportCommand->add_flag("--raw", args.raw, "Raw encoding instead of gzip");
+    exportCommand->add_flag("--raw", args.raw, "Raw encoding instead of gzip (NRRD; NIfTI by its name)");
     return exportCommand;
 }
 

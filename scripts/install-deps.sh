@@ -12,7 +12,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev zlib1g-dev libpng-dev python3-jsonschema
-  libgdcm-dev libgdcm-tools python3-pydicom python3-numpy
+  libgdcm-dev libgdcm-tools python3-pydicom python3-numpy python3-nibabel
   libtinygltf-dev
 )
 # The benchmark's comparison with VTK's CPU ray caster (bench/vtk_bench.py)

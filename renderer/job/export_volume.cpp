@@ -98,26 +98,38 @@ Exported exportVolume(const Scene& given, bool withLabels, int oversample) {
 
 namespace {
 
-// Whether `path` names an NRRD file: ".nrrd" in any case, as volumes are read.
-bool isNrrdName(const std::filesystem::path& path) {
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
+enum class ExportFormat { None, Nrrd, Nifti, NiftiGzip };
+
+// The format `path` names, in any case, as volumes are read.
+ExportFormat formatOf(const std::filesystem::path& path) {
+    std::string name = path.filename().string();
+    std::transform(name.begin(), name.end(), name.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return extension == ".nrrd";
+    if (name.ends_with(".nrrd")) return ExportFormat::Nrrd;
+    if (name.ends_with(".nii")) return ExportFormat::Nifti;
+    if (name.ends_with(".nii.gz")) return ExportFormat::NiftiGzip;
+    return ExportFormat::None;
+}
+
+void checkName(const std::string& option, const std::filesystem::path& path, bool compress) {
+    const ExportFormat format = formatOf(path);
+    if (format == ExportFormat::None)
+        throw InputError(option + " " + path.string() +
+                         ": expected a .nrrd, .nii or .nii.gz file name");
+    if (format == ExportFormat::NiftiGzip && !compress)
+        throw InputError(option + " " + path.string() +
+                         ": --raw asks for no compression, and .nii.gz is gzip: name it .nii");
 }
 
 } // namespace
 
 void checkExportName(const ExportRequest& request) {
-    if (!isNrrdName(request.output))
-        throw InputError("-o " + request.output.string() + ": expected a .nrrd file name");
+    checkName("-o", request.output, request.compress);
 }
 
 void checkExportRequest(const Scene& scene, const std::string& sceneName,
                         const ExportRequest& request) {
-    if (request.labelsOutput && !isNrrdName(*request.labelsOutput))
-        throw InputError("--labels-output " + request.labelsOutput->string() +
-                         ": expected a .nrrd file name");
+    if (request.labelsOutput) checkName("--labels-output", *request.labelsOutput, request.compress);
     if (request.labelsOutput && !scene.labels)
         throw InputError("--labels-output " + request.labelsOutput->string() + ": " + sceneName +
                          " has no /labels");
@@ -128,7 +140,10 @@ void writeExport(const Exported& exported, const ExportRequest& request,
                  const std::function<void(const std::filesystem::path&, const Volume&)>& wrote) {
     const auto write = [&](const std::filesystem::path& path, const Volume& v) {
         createOutputFolder(path); // as `render` does
-        writeNrrd(path, v, request.compress);
+        if (formatOf(path) == ExportFormat::Nrrd)
+            writeNrrd(path, v, request.compress);
+        else
+            writeNifti(path, v); // gzip or not by its name
         if (wrote) wrote(path, v);
     };
     write(request.output, exported.volume);

@@ -45,7 +45,8 @@ struct Exported {
 /// over the same box (resampleDeformed), so cut faces alias K times less.
 Exported exportVolume(const Scene& scene, bool withLabels = false, int oversample = 1);
 
-/// Where an export goes: the volume's NRRD, and its labels' when asked for.
+/// Where an export goes: the volume's file (NRRD or NIfTI-1, by its name),
+/// and its labels' when asked for.
 struct ExportRequest {
     std::filesystem::path output;
     std::optional<std::filesystem::path> labelsOutput;
@@ -56,11 +57,12 @@ struct ExportRequest {
 /// The finest --oversample: 4^3 = 64 voxels for each of the scan's.
 inline constexpr int kMostOversample = 4;
 
-/// Refuses an output not named .nrrd (InputError naming -o).
+/// Refuses an output not named .nrrd, .nii or .nii.gz, or a .nii.gz with
+/// compression off (InputError naming -o).
 void checkExportName(const ExportRequest& request);
 
 /// Refuses what `cutaway export` cannot write for `scene` (one frame): a
-/// labels output not named .nrrd or asked of a scene without /labels
+/// labels output not named as -o may be named, or asked of a scene without /labels
 /// (naming --labels-output and `sceneName`), and outputs that are files the
 /// frame reads or each other (checkExportPaths). InputError.
 void checkExportRequest(const Scene& scene, const std::string& sceneName,
