@@ -230,6 +230,9 @@ int runValidate(const RenderArgs& args) {
     if (!args.quiet)
         for (const std::string& warning : v.warnings)
             std::cerr << "cutaway: warning: " << args.scene << ": " << warning << "\n";
+    if (!args.quiet)
+        for (const std::string& note : v.notes)
+            std::cerr << "cutaway: note: " << args.scene << ": " << note << "\n";
     if (v.framesInRun == 0)
         std::printf("%s: valid (no frames in this run)\n", args.scene.c_str());
     else
@@ -327,22 +330,26 @@ CLI::App* addExport(CLI::App& app, ExportArgs& args) {
         "export", "Write the deformed volume of one frame as NRRD or NIfTI (for ParaView, "
                   "3D Slicer, nibabel); no device needed");
     exportCommand->add_option("scene", args.scene, "Scene file (JSON)")->required();
-    exportCommand->add_option("-o,--output", args.output, "Output file: .nrrd, .nii or .nii.gz")->required();
+    exportCommand->add_option("-o,--output", args.output, "Output file: .nrrd, .nii or .nii.gz")
+        ->required();
     exportCommand->add_option("--frame", args.frame, "Frame of the animation (default: its first)");
     exportCommand->add_option("--set", args.sets, "Override a scene value: /json/pointer=VALUE");
-    exportCommand->add_option("--labels-output", args.labelsOutput,
-                              "Also write the scene's label volume, deformed alike (.nrrd, .nii, .nii.gz)");
+    exportCommand->add_option(
+        "--labels-output", args.labelsOutput,
+        "Also write the scene's label volume, deformed alike (.nrrd, .nii, .nii.gz)");
     exportCommand
         ->add_option("--oversample", args.oversample,
                      "A grid K times finer along each axis (1-4, default 1): cut faces alias K "
                      "times less")
         ->check(CLI::Range(1, cutaway::job::kMostOversample));
-    exportCommand->add_flag("--raw", args.raw, "Raw encoding instead of gzip (NRRD; NIfTI by its name)");
+    exportCommand->add_flag("--raw", args.raw,
+                            "Raw encoding instead of gzip (NRRD; NIfTI by its name)");
     return exportCommand;
 }
 
 CLI::App* addInfo(CLI::App& app, std::string& file, std::string& series) {
-    CLI::App* info = app.add_subcommand("info", "Describe a volume file (NRRD, NIfTI, MetaImage, DICOM)");
+    CLI::App* info =
+        app.add_subcommand("info", "Describe a volume file (NRRD, NIfTI, MetaImage, DICOM)");
     info->add_option("file", file, "Volume file, or a DICOM folder, DICOMDIR or file")->required();
     info->add_option("--series", series,
                      "The DICOM series to describe: its number, UID or description");

@@ -10,13 +10,21 @@
 #include <array>
 #include <cstddef>
 #include <glm/glm.hpp>
+#include <optional>
 #include <vector>
 
 namespace cutaway::bake {
 
+/// The values the texture holds, [lo, hi]; a voxel outside takes the nearer
+/// end. `below` and `above`: the values such voxels are classified as (the
+/// transfer table's first and last entries; none: lo and hi), the volume's
+/// extremes where /volume/window cuts them off, so air below a soft-tissue
+/// window stays air.
 struct ValueWindow {
     double lo = 0.0;
     double hi = 1.0;
+    std::optional<double> below;
+    std::optional<double> above;
     bool operator==(const ValueWindow&) const = default;
 };
 

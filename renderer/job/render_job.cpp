@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "job/address_space.hpp"
 #include "job/scene_check.hpp"
+#include "job/value_checks.hpp"
 #include "job/volume_frame.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/volume_renderer.hpp"
@@ -38,9 +39,11 @@ Image FrameRenderer::render(const Scene& given) {
             m_warnedNonFinite.push_back(key);
             m_warnings.push_back(nonFiniteWarning(given, fv.nonFinite, fv.scan->voxelCount()));
         }
+        for (std::string& w : valueWarnings(given, *fv.scan))
+            if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));
         if (fv.labels)
             for (std::string& w : absentLabelWarnings(given, *fv.labels))
-                if (m_warnedLabels.insert(w).second) m_warnings.push_back(std::move(w));
+                if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));
         try {
             m_volume = std::make_unique<render::GpuVolume>(render::prepareVolume(
                 m_ctx, m_baker, std::move(fv.scan), fv.window, fv.worldLo, std::move(fv.labels)));

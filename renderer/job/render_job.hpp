@@ -68,7 +68,7 @@ private:
     std::vector<std::string> m_warnings;
     std::set<std::size_t> m_warnedOutside;         ///< operator indices already warned of
     std::vector<FrameVolumeKey> m_warnedNonFinite; ///< volumes already warned of
-    std::set<std::string> m_warnedLabels;          ///< absent-label warnings already given
+    std::set<std::string> m_warnedOnce; ///< absent-label and value warnings already given
 };
 
 /// Renders one frame to an image without writing anything (tests, benchmark).

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "job/render_job.hpp"
+#include "job/value_checks.hpp"
 #include "job/volume_frame.hpp"
 #include "mesh/mesh.hpp"
 #include "operators/operator_geometry.hpp"
@@ -106,9 +107,13 @@ void SceneFileCheck::frame(const Scene& given) {
         if (m_meshesRead.insert(mesh.file.string()).second) mesh::loadGltf(mesh.file);
     if (files.nonFinite > 0 && m_warnedFiles.insert(filesIndex).second)
         m_warnings.push_back(nonFiniteWarning(scene, files.nonFinite, files.scan->voxelCount()));
+    for (std::string& w : valueWarnings(scene, *files.scan))
+        if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));
+    for (std::string& n : valueNotes(scene, *files.scan))
+        if (m_noted.insert(n).second) m_notes.push_back(std::move(n));
     if (files.labels)
         for (std::string& w : absentLabelWarnings(scene, *files.labels))
-            if (m_warnedLabels.insert(w).second) m_warnings.push_back(std::move(w));
+            if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));
     const glm::dvec3 extent = files.scan->extent();
     for (OperatorOutside& o : operatorsOutside(scene, -0.5 * extent, 0.5 * extent))
         if (m_warned.insert(o.index).second) m_warnings.push_back(std::move(o.message));

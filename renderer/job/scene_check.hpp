@@ -42,6 +42,8 @@ public:
     /// thing this frame's render would refuse.
     void frame(const Scene& scene);
     std::vector<std::string> takeWarnings() { return std::exchange(m_warnings, {}); }
+    /// What the frames derive from their scans (job/value_checks.hpp), each once.
+    std::vector<std::string> takeNotes() { return std::exchange(m_notes, {}); }
 
 private:
     struct Files {
@@ -67,9 +69,11 @@ private:
     std::map<SegmentKey, std::string> m_segments; ///< segment checked -> its error, or ""
     std::set<std::string> m_meshesRead;
     std::set<std::size_t> m_warned;
-    std::set<std::size_t> m_warnedFiles;  ///< m_files whose non-finite voxels were warned of
-    std::set<std::string> m_warnedLabels; ///< absent-label warnings already given
+    std::set<std::size_t> m_warnedFiles; ///< m_files whose non-finite voxels were warned of
+    std::set<std::string> m_warnedOnce;  ///< absent-label and value warnings already given
     std::vector<std::string> m_warnings;
+    std::set<std::string> m_noted;
+    std::vector<std::string> m_notes;
 };
 
 } // namespace cutaway::job

@@ -124,8 +124,14 @@ std::vector<std::string> absentLabelWarnings(const Scene& scene, const Volume& l
 }
 
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {
-    if (scene.volume.window) return {(*scene.volume.window)[0], (*scene.volume.window)[1]};
     const ValueRange range = valueRange(volume);
+    if (scene.volume.window) {
+        const auto [lo, hi] = *scene.volume.window;
+        bake::ValueWindow w{lo, hi};
+        if (range.min < lo) w.below = range.min;
+        if (range.max > hi) w.above = range.max;
+        return w;
+    }
     if (range.max > range.min) return {range.min, range.max};
     return {range.min, range.min + 1.0};
 }

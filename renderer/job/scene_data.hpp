@@ -39,7 +39,9 @@ std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene,
                                               const std::shared_ptr<const Volume>& scan);
 
 /// The value window: the scene's, else the volume's value range (a flat
-/// volume gets a window of width 1 so normalization stays defined).
+/// volume gets a window of width 1 so normalization stays defined). Where
+/// the scene's window cuts the range off, the voxels beyond classify as the
+/// volume's extreme values (ValueWindow::below, above).
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
 
 /// What empty space (cuts, openings, the space a flap lifts into) holds when

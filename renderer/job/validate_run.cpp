@@ -39,6 +39,7 @@ Validation validateRun(const Scene& scene, const SequenceOptions& options,
         }
     }
     v.warnings = check.takeWarnings();
+    v.notes = check.takeNotes();
     return v;
 }
 

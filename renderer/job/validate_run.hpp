@@ -18,6 +18,7 @@ struct Validation {
     int failed = 0;                    ///< of them, those a render would refuse
     std::vector<std::string> failures; ///< the first few frames' errors
     std::vector<std::string> warnings; ///< what a render would warn of, each once
+    std::vector<std::string> notes;    ///< what the scans give (value range, Otsu), each once
 };
 
 /// How many frames' errors Validation::failures keeps.

@@ -30,7 +30,9 @@ std::vector<glm::vec4> tabulateTransfer(const TransferFunction& tf, bake::ValueW
                                         int n) {
     std::vector<glm::vec4> table(static_cast<std::size_t>(n));
     for (int i = 0; i < n; ++i) {
-        const double v = window.lo + (window.hi - window.lo) * i / (n - 1);
+        double v = window.lo + (window.hi - window.lo) * i / (n - 1);
+        if (i == 0) v = window.below.value_or(window.lo);
+        if (i == n - 1) v = window.above.value_or(window.hi);
         table[static_cast<std::size_t>(i)] = evaluateTransfer(tf, v);
     }
     return table;

@@ -11,7 +11,9 @@ namespace cutaway::render {
 
 constexpr int kTransferTableSize = 1024;
 
-/// Entry i holds the transfer function at value lo + (hi - lo) * i / (n - 1).
+/// Entry i holds the transfer function at value lo + (hi - lo) * i / (n - 1),
+/// the first and last at window.below and window.above (the values the
+/// voxels clamped to the window's ends stand for).
 std::vector<glm::vec4> tabulateTransfer(const TransferFunction& tf, bake::ValueWindow window,
                                         int n = kTransferTableSize);
 
