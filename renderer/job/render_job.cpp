@@ -5,8 +5,10 @@
 #include "job/scene_check.hpp"
 #include "job/value_checks.hpp"
 #include "job/volume_frame.hpp"
+#include "operators/operator_geometry.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/volume_renderer.hpp"
+#include "scene/animation.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -72,6 +74,7 @@ Image FrameRenderer::render(const Scene& given) {
         mesh.attach.reset();
     }
     live.operators = liveOperators(scene);
+    if (scene.camera.fit == CameraFit::Sequence) live.camera.sequenceBounds = sequenceBounds(given);
     Image image = m_renderer.render(live, *m_volume);
     // The renderer counts the live operators; operator_id names each by its
     // index in the scene, and the live ones are the scene's last.
@@ -79,6 +82,27 @@ Image FrameRenderer::render(const Scene& given) {
     for (float& id : image.operatorIds)
         if (id >= 0.0f) id += first;
     return image;
+}
+
+std::array<glm::dvec3, 2> FrameRenderer::sequenceBounds(const Scene& given) {
+    // Every frame of one run's scene has the same first frame: the key.
+    const Scene first = sceneAtFrame(given, given.animation.firstFrame);
+    if (m_sequenceBounds && m_sequenceKey == first.document) return *m_sequenceBounds;
+    const operators::WorldBox volumeBox{glm::dmat4(1.0), {m_volume->box.lo, m_volume->box.hi}};
+    std::array<glm::dvec3, 2> bounds{m_volume->box.lo, m_volume->box.hi};
+    for (int f = given.animation.firstFrame; f <= given.animation.lastFrame; ++f) {
+        // As frameGeometry grows the bounds: by each operator that reaches the volume.
+        for (const OperatorSpec& op : inVolumeFrame(sceneAtFrame(given, f), m_geometry).operators) {
+            if (!operators::intersects(operators::WorldBox{op.localToWorld, {}}, volumeBox))
+                continue;
+            const operators::WorldBox moved = operators::worldBox(op);
+            bounds[0] = glm::min(bounds[0], moved.lo());
+            bounds[1] = glm::max(bounds[1], moved.hi());
+        }
+    }
+    m_sequenceKey = first.document;
+    m_sequenceBounds = bounds;
+    return bounds;
 }
 
 void FrameRenderer::warnOfOperatorsOutside(const Scene& scene) {

@@ -14,6 +14,7 @@
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
+#include <array>
 #include <filesystem>
 #include <glm/glm.hpp>
 #include <memory>
@@ -57,13 +58,19 @@ public:
 
 private:
     void warnOfOperatorsOutside(const Scene& scene);
+    /// The bounds of what the operators of `given`'s animation move over all
+    /// its frames, with the volume's box (/camera/fit "sequence"), cached.
+    std::array<glm::dvec3, 2> sequenceBounds(const Scene& given);
 
     const gpu::Context& m_ctx;
     bake::GradientBaker m_baker;
     render::VolumeRenderer m_renderer;
     std::unique_ptr<render::GpuVolume> m_volume;
     std::optional<FrameVolumeKey> m_volumeKey;
-    Volume m_geometry; ///< the scan's as loaded: places LPS and RAS (job/volume_frame.hpp)
+    Volume m_geometry;
+    nlohmann::json m_sequenceKey; ///< the first frame's document sequenceBounds were made for
+    std::optional<std::array<glm::dvec3, 2>>
+        m_sequenceBounds; ///< the scan's as loaded: places LPS and RAS (job/volume_frame.hpp)
     int m_uploads = 0;
     std::vector<std::string> m_warnings;
     std::set<std::size_t> m_warnedOutside;         ///< operator indices already warned of

@@ -64,8 +64,20 @@ FrameGeometry frameGeometry(const Scene& scene, const GpuVolume& volume,
         inDepth.lo = glm::min(inDepth.lo, meshBounds->lo);
         inDepth.hi = glm::max(inDepth.hi, meshBounds->hi);
     }
+    // What a distance of 0 fits (/camera/fit).
+    Box fitted = volume.box;
+    if (scene.camera.fit == CameraFit::Deformed) fitted = g.bounds;
+    if (scene.camera.fit == CameraFit::Sequence) {
+        fitted = g.bounds;
+        if (const auto& b = scene.camera.sequenceBounds) {
+            fitted.lo = glm::min(fitted.lo, (*b)[0]);
+            fitted.hi = glm::max(fitted.hi, (*b)[1]);
+        }
+    }
+    inDepth.lo = glm::min(inDepth.lo, fitted.lo);
+    inDepth.hi = glm::max(inDepth.hi, fitted.hi);
     g.camera =
-        computeCamera(scene.camera, volume.box, scene.render.width, scene.render.height, &inDepth);
+        computeCamera(scene.camera, fitted, scene.render.width, scene.render.height, &inDepth);
     g.sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();
     const CameraMatrices& cam = g.camera;
     const double tanX = cam.perspective ? 1.0 / std::abs(cam.proj[0][0]) : 0.0;

@@ -70,6 +70,13 @@ struct LabelSource {
 
 enum class Projection { Perspective, Orthographic };
 
+/// /camera/fit: what a distance or ortho height of 0 fits in view.
+enum class CameraFit {
+    Volume,   ///< the volume's box
+    Deformed, ///< the volume's box and what the frame's operators move
+    Sequence  ///< the same, over every frame of the animation: a steady view
+};
+
 /// The frame a placement's coordinates are in ("space"): the volume frame
 /// (mm along the voxel grid's axes, the volume's centre at the origin), or the
 /// scan's own physical coordinates, LPS (as `cutaway info` prints them) or RAS
@@ -99,6 +106,11 @@ struct Camera {
     /// Turns directions (`up`, the orbit's) into the volume frame: identity
     /// until job/volume_frame.hpp places a camera given in LPS or RAS.
     glm::dmat3 directionsToVolume{1.0};
+    CameraFit fit = CameraFit::Volume;
+    /// With CameraFit::Sequence, the bounds (lo, hi in the volume frame) of
+    /// what the operators move over the animation, set by the renderer of
+    /// the sequence (job/render_job.cpp); none: the frame's own.
+    std::optional<std::array<glm::dvec3, 2>> sequenceBounds;
 };
 
 struct DirectionalLight {

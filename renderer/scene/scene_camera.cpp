@@ -109,6 +109,10 @@ std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key
 ///  * ortho_height  number, mm, in [0, 1e6], default 0
 ///                  Height of the orthographic view; 0 fits the volume's
 ///                  bounding sphere.
+///  * fit           "volume" | "deformed" | "sequence", default "volume": what a
+///                  distance (or ortho_height) of 0 fits in view: the volume's
+///                  box; with what the frame's operators move; with what they
+///                  move over the whole animation (the view stays still)
 ///  * orbit         object, default {}: see parseOrbit above
 ///  * look_at       object, default none: see parseLookAt above
 void parseCamera(JsonReader& reader, Camera& camera) {
@@ -118,6 +122,10 @@ void parseCamera(JsonReader& reader, Camera& camera) {
         projection == "orthographic" ? Projection::Orthographic : Projection::Perspective;
     camera.fovDeg = reader.number("fov", camera.fovDeg, Range::open(0.0, 170.0));
     camera.orthoHeight = reader.number("ortho_height", camera.orthoHeight, 0.0, kMaxCoordinate);
+    const std::string fit = reader.string("fit", "volume", {"volume", "deformed", "sequence"});
+    camera.fit = fit == "deformed"   ? CameraFit::Deformed
+                 : fit == "sequence" ? CameraFit::Sequence
+                                     : CameraFit::Volume;
 
     if (reader.has("orbit") && reader.has("look_at")) {
         reader.errorHere("expected at most one of \"orbit\" or \"look_at\", got both");

@@ -39,7 +39,14 @@ std::string number(double v) {
 }
 
 std::string vec3(glm::dvec3 v) {
-    return "[" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + "]";
+    std::string text(1, '['); // appended: GCC 12's false -Wrestrict (its bug 105329)
+    text += number(v.x);
+    text += ", ";
+    text += number(v.y);
+    text += ", ";
+    text += number(v.z);
+    text += ']';
+    return text;
 }
 
 std::string matrix(const glm::dmat4& m) {
