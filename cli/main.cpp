@@ -6,11 +6,13 @@
 //   cutaway validate SCENE [--set ...]
 //   cutaway export SCENE [--frame N] -o OUT.nrrd|.nii[.gz] [--labels-output L] [--set ...]
 //                  [--oversample K] [--raw]
+//   cutaway watch SCENE [-o preview.png] [--size WxH] [--set ...]
 //   cutaway info FILE [--series S]
 //   cutaway devices
 //
 // Exit codes: 0 success, 1 runtime failure, 2 bad input or usage;
 // 128 + signal when interrupted by SIGINT, SIGTERM, SIGHUP or SIGQUIT.
+#include "arguments.hpp"
 #include "core/error.hpp"
 #include "core/process_memory.hpp"
 #include "gpu/context.hpp"
@@ -28,6 +30,7 @@
 #include "volume/dicom.hpp"
 #include "volume/volume.hpp"
 #include "volume_info.hpp"
+#include "watch.hpp"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -40,18 +43,6 @@ namespace {
 
 constexpr int kExitRuntime = 1;
 constexpr int kExitInput = 2;
-
-glm::ivec2 parseSize(const std::string& text) {
-    static const std::regex form("([0-9]{1,5})x([0-9]{1,5})");
-    std::smatch m;
-    if (!std::regex_match(text, m, form))
-        throw cutaway::InputError("--size: expected WIDTHxHEIGHT such as 512x512, got \"" + text +
-                                  "\"");
-    glm::ivec2 size(std::stoi(m[1].str()), std::stoi(m[2].str()));
-    if (size.x < 1 || size.y < 1 || size.x > 16384 || size.y > 16384)
-        throw cutaway::InputError("--size: each side must be in [1, 16384], got " + text);
-    return size;
-}
 
 struct RenderArgs {
     std::string scene;
@@ -101,7 +92,7 @@ cutaway::job::SequenceOptions runOptions(const RenderArgs& args, const cutaway::
     namespace job = cutaway::job;
     job::SequenceOptions options;
     if (!args.output.empty()) options.overrides.outputPattern = args.output;
-    if (!args.size.empty()) options.overrides.size = parseSize(args.size);
+    if (!args.size.empty()) options.overrides.size = cutaway::cli::parseSize(args.size);
     options.overrides.png = args.png;
     if (!args.frames.empty()) {
         options.frames = job::parseFrameRange(args.frames);
@@ -373,6 +364,8 @@ int main(int argc, char** argv) {
     CLI::App* validate = addValidate(app, validateArgs);
     CLI::App* exportCommand = addExport(app, exportArgs);
     CLI::App* info = addInfo(app, infoFile, infoSeries);
+    cutaway::cli::WatchArgs watchArgs;
+    CLI::App* watch = cutaway::cli::addWatch(app, watchArgs);
     auto* devices = app.add_subcommand("devices", "List the Vulkan devices");
 
     try {
@@ -387,6 +380,7 @@ int main(int argc, char** argv) {
         if (validate->parsed()) return runValidate(validateArgs);
         if (exportCommand->parsed()) return runExport(exportArgs);
         if (info->parsed()) return runInfo(infoFile, infoSeries);
+        if (watch->parsed()) return cutaway::cli::runWatch(watchArgs);
         if (devices->parsed()) return runDevices();
     } catch (const cutaway::InputError& e) {
         std::cerr << "cutaway: error: " << e.what() << "\n";
