@@ -54,6 +54,8 @@ std::vector<RunInput> runInputs(const Scene& scene) {
         addVolumeFiles(inputs, scene.volume.file, "the volume", scene.volume.raw.has_value());
     if (scene.labels && !scene.labels->phantom)
         addVolumeFiles(inputs, scene.labels->file, "the label volume", false);
+    if (scene.labels && !scene.labels->table.empty())
+        addInput(inputs, scene.labels->table, "the label table");
     for (const MeshSpec& mesh : scene.meshes) {
         std::vector<fs::path> files{mesh.file};
         try {

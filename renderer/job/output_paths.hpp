@@ -27,7 +27,7 @@ struct RunInput {
 
 /// The files a run of `scene` reads that exist: the scene file, the volume
 /// (a detached NRRD header with its data file), the label volume (likewise),
-/// each glTF model with the buffers and images it names.
+/// the label table, each glTF model with the buffers and images it names.
 std::vector<RunInput> runInputs(const Scene& scene);
 
 /// Throws InputError "WHERE: PATH is the volume this run reads (...)" when

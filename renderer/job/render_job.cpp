@@ -41,8 +41,6 @@ Image FrameRenderer::render(const Scene& given) {
             m_warnedNonFinite.push_back(key);
             m_warnings.push_back(nonFiniteWarning(given, fv.nonFinite, fv.scan->voxelCount()));
         }
-        for (std::string& w : valueWarnings(given, *fv.scan))
-            if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));
         if (fv.labels)
             for (std::string& w : absentLabelWarnings(given, *fv.labels))
                 if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));
@@ -61,6 +59,9 @@ Image FrameRenderer::render(const Scene& given) {
     } else {
         checkAddressSpace(addressSpaceNeed(given, m_volume->scan.get(), m_volume->labels.get()));
     }
+    // Every frame's transfer functions (animated, or edited under a watch).
+    for (const std::string& w : m_values.warnings(given, *m_volume->scan, m_volume->serial))
+        if (m_warnedOnce.insert(w).second) m_warnings.push_back(w);
     // Placements given in LPS or RAS, in the volume frame from here on.
     const Scene scene = inVolumeFrame(given, m_geometry);
     warnOfOperatorsOutside(scene);
@@ -92,7 +93,8 @@ std::array<glm::dvec3, 2> FrameRenderer::sequenceBounds(const Scene& given) {
     std::array<glm::dvec3, 2> bounds{m_volume->box.lo, m_volume->box.hi};
     for (int f = given.animation.firstFrame; f <= given.animation.lastFrame; ++f) {
         // As frameGeometry grows the bounds: by each operator that reaches the volume.
-        for (const OperatorSpec& op : inVolumeFrame(sceneAtFrame(given, f), m_geometry).operators) {
+        for (const OperatorSpec& op :
+             liveOperators(inVolumeFrame(sceneAtFrame(given, f), m_geometry))) {
             if (!operators::intersects(operators::WorldBox{op.localToWorld, {}}, volumeBox))
                 continue;
             const operators::WorldBox moved = operators::worldBox(op);

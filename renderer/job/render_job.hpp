@@ -8,6 +8,7 @@
 #include "io/image.hpp"
 #include "job/output_pattern.hpp"
 #include "job/scene_data.hpp"
+#include "job/value_checks.hpp"
 #include "operators/deformed_volume.hpp"
 #include "render/gpu_volume.hpp"
 #include "render/volume_renderer.hpp"
@@ -68,6 +69,7 @@ private:
     std::unique_ptr<render::GpuVolume> m_volume;
     std::optional<FrameVolumeKey> m_volumeKey;
     Volume m_geometry;
+    ValueChecks m_values;         ///< of every frame, made again when its functions change
     nlohmann::json m_sequenceKey; ///< the first frame's document sequenceBounds were made for
     std::optional<std::array<glm::dvec3, 2>>
         m_sequenceBounds; ///< the scan's as loaded: places LPS and RAS (job/volume_frame.hpp)

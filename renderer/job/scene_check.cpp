@@ -107,10 +107,10 @@ void SceneFileCheck::frame(const Scene& given) {
         if (m_meshesRead.insert(mesh.file.string()).second) mesh::loadGltf(mesh.file);
     if (files.nonFinite > 0 && m_warnedFiles.insert(filesIndex).second)
         m_warnings.push_back(nonFiniteWarning(scene, files.nonFinite, files.scan->voxelCount()));
-    for (std::string& w : valueWarnings(scene, *files.scan))
-        if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));
-    for (std::string& n : valueNotes(scene, *files.scan))
-        if (m_noted.insert(n).second) m_notes.push_back(std::move(n));
+    for (const std::string& w : m_values.warnings(scene, *files.scan, filesIndex))
+        if (m_warnedOnce.insert(w).second) m_warnings.push_back(w);
+    for (const std::string& n : m_values.notes(scene, *files.scan, filesIndex))
+        if (m_noted.insert(n).second) m_notes.push_back(n);
     if (files.labels)
         for (std::string& w : absentLabelWarnings(scene, *files.labels))
             if (m_warnedOnce.insert(w).second) m_warnings.push_back(std::move(w));

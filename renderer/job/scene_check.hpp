@@ -3,6 +3,7 @@
 // files its frames name, read and checked as a render would, and the warnings
 // a render would give.
 #include "job/scene_data.hpp"
+#include "job/value_checks.hpp"
 #include "scene/scene.hpp"
 
 #include <array>
@@ -72,6 +73,7 @@ private:
     std::set<std::size_t> m_warnedFiles; ///< m_files whose non-finite voxels were warned of
     std::set<std::string> m_warnedOnce;  ///< absent-label and value warnings already given
     std::vector<std::string> m_warnings;
+    ValueChecks m_values;
     std::set<std::string> m_noted;
     std::vector<std::string> m_notes;
 };

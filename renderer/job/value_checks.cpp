@@ -125,4 +125,40 @@ std::vector<std::string> valueNotes(const Scene& scene, const Volume& scan) {
     return notes;
 }
 
+ValueChecks::Key ValueChecks::keyOf(const Scene& scene, std::uint64_t scanId, bool forNotes) {
+    Key key;
+    key.scan = scanId;
+    key.window = scene.volume.window;
+    if (forNotes) {
+        for (const OperatorSpec& op : scene.operators)
+            if (op.alignment.mode == AlignmentMode::Surface && !op.alignment.threshold)
+                key.otsuOperators.push_back(op.index);
+        return key;
+    }
+    key.transfers.push_back(scene.transfer);
+    for (const LabelTransfer& t : scene.labelTransfers)
+        key.transfers.push_back(t.transfer);
+    return key;
+}
+
+const std::vector<std::string>& ValueChecks::warnings(const Scene& scene, const Volume& scan,
+                                                      std::uint64_t scanId) {
+    Key key = keyOf(scene, scanId, false);
+    if (m_warningsKey != key) {
+        m_warnings = valueWarnings(scene, scan);
+        m_warningsKey = std::move(key);
+    }
+    return m_warnings;
+}
+
+const std::vector<std::string>& ValueChecks::notes(const Scene& scene, const Volume& scan,
+                                                   std::uint64_t scanId) {
+    Key key = keyOf(scene, scanId, true);
+    if (m_notesKey != key) {
+        m_notes = valueNotes(scene, scan);
+        m_notesKey = std::move(key);
+    }
+    return m_notes;
+}
+
 } // namespace cutaway::job

@@ -12,6 +12,9 @@
 #include "scene/scene.hpp"
 #include "volume/volume.hpp"
 
+#include <array>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,5 +37,29 @@ std::vector<std::string> valueWarnings(const Scene& scene, const Volume& scan);
 /// What validate notes: the scan's value range, the window, and the
 /// threshold each surface-aligned operator without one takes (Otsu's).
 std::vector<std::string> valueNotes(const Scene& scene, const Volume& scan);
+
+/// valueWarnings and valueNotes for the frames of a run, each made again
+/// only when what it depends on changes: the scan (`scanId`: the same id,
+/// the same voxels), the transfer functions, the window, the operators whose
+/// threshold is Otsu's. A frame is checked, not only the first.
+class ValueChecks {
+public:
+    const std::vector<std::string>& warnings(const Scene& scene, const Volume& scan,
+                                             std::uint64_t scanId);
+    const std::vector<std::string>& notes(const Scene& scene, const Volume& scan,
+                                          std::uint64_t scanId);
+
+private:
+    struct Key {
+        std::uint64_t scan = 0;
+        std::vector<TransferFunction> transfers;
+        std::optional<std::array<double, 2>> window;
+        std::vector<int> otsuOperators;
+        bool operator==(const Key&) const = default;
+    };
+    static Key keyOf(const Scene& scene, std::uint64_t scanId, bool forNotes);
+    std::optional<Key> m_warningsKey, m_notesKey;
+    std::vector<std::string> m_warnings, m_notes;
+};
 
 } // namespace cutaway::job

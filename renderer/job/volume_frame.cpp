@@ -69,7 +69,7 @@ Scene inVolumeFrame(const Scene& scene, const Volume& scan) {
         const std::string pointer =
             std::string("/camera/") + (camera.useOrbit ? "orbit" : "look_at") + "/space";
         const glm::dmat4 m = spaceToVolumeFrame(scan, camera.space, pointer, scanName);
-        camera.target = glm::dvec3(m * glm::dvec4(camera.target, 1.0));
+        if (camera.targetGiven) camera.target = glm::dvec3(m * glm::dvec4(camera.target, 1.0));
         camera.eye = glm::dvec3(m * glm::dvec4(camera.eye, 1.0));
         camera.directionsToVolume = glm::dmat3(m);
         camera.space = CoordinateSpace::Volume;

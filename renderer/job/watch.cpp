@@ -17,9 +17,11 @@ FileWatch::Seen FileWatch::look(const std::filesystem::path& path) {
     std::error_code ec;
     const auto status = std::filesystem::status(path, ec);
     s.exists = !ec && std::filesystem::exists(status);
-    if (!s.exists) return s;
+    // A folder (DICOM) by its presence alone: the files in it are watched
+    // one by one, and a preview written into it would change its time.
+    if (!s.exists || !std::filesystem::is_regular_file(status)) return s;
     s.time = std::filesystem::last_write_time(path, ec);
-    if (std::filesystem::is_regular_file(status)) s.size = std::filesystem::file_size(path, ec);
+    s.size = std::filesystem::file_size(path, ec);
     return s;
 }
 
@@ -63,6 +65,11 @@ PreviewResult PreviewRenderer::render(const PreviewRequest& request) {
         const Scene scene = loadScene(request.scene, request.settings);
         const std::vector<RunInput> inputs = runInputs(scene);
         result.inputs = pathsOf(inputs);
+        std::vector<std::filesystem::path> read; // what the renderer's caches hold
+        for (const RunInput& input : inputs)
+            if (input.what != "the scene") read.push_back(input.path);
+        m_inputs.watch(read);
+        if (m_inputs.changed() || !m_renderer) m_renderer = std::make_unique<FrameRenderer>(m_ctx);
         checkNotAnInput(request.output, inputs, "-o");
         Scene frame = sceneAtFrame(scene, scene.animation.firstFrame);
         // Draft quality unless the scene (or --set) asks for a quality.
@@ -73,8 +80,8 @@ PreviewResult PreviewRenderer::render(const PreviewRequest& request) {
             frame.render.width = request.size->x;
             frame.render.height = request.size->y;
         }
-        const Image image = m_renderer.render(frame);
-        result.warnings = m_renderer.takeWarnings();
+        const Image image = m_renderer->render(frame);
+        result.warnings = m_renderer->takeWarnings();
         createOutputFolder(request.output);
         writePng(request.output, image);
         result.written = true;

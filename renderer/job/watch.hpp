@@ -55,13 +55,17 @@ struct PreviewResult {
 
 class PreviewRenderer {
 public:
-    explicit PreviewRenderer(const gpu::Context& ctx) : m_renderer(ctx) {}
+    explicit PreviewRenderer(const gpu::Context& ctx) : m_ctx(ctx) {}
     /// Renders `request` once. Bad input and failed renders are reported in
     /// the result, not thrown: a watch goes on to the next edit.
     PreviewResult render(const PreviewRequest& request);
 
 private:
-    FrameRenderer m_renderer;
+    const gpu::Context& m_ctx;
+    /// Kept across edits; made anew when a file the scene reads (other than
+    /// the scene itself) changed, as its caches know files by their names.
+    std::unique_ptr<FrameRenderer> m_renderer;
+    FileWatch m_inputs;
 };
 
 /// The preview's default path: SCENE's folder, its stem + "_preview.png".

@@ -76,6 +76,13 @@ FrameGeometry frameGeometry(const Scene& scene, const GpuVolume& volume,
     }
     inDepth.lo = glm::min(inDepth.lo, fitted.lo);
     inDepth.hi = glm::max(inDepth.hi, fitted.hi);
+    if (scene.camera.fit != CameraFit::Volume) {
+        // The view aims at the target, which the moved material need not
+        // surround: fit a box about the target that holds it all.
+        const glm::dvec3 t = scene.camera.target;
+        const glm::dvec3 reach = glm::max(glm::abs(fitted.lo - t), glm::abs(fitted.hi - t));
+        fitted = Box{t - reach, t + reach};
+    }
     g.camera =
         computeCamera(scene.camera, fitted, scene.render.width, scene.render.height, &inDepth);
     g.sliceMm = scene.render.sliceSpacing * volume.smallestSpacing();

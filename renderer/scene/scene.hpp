@@ -103,6 +103,7 @@ struct Camera {
     /// /camera/orbit/space or /camera/look_at/space: the frame of `target`,
     /// `eye` and `up` (and of the orbit's directions).
     CoordinateSpace space = CoordinateSpace::Volume;
+    bool targetGiven = false; ///< a target left out is the volume's centre in every space
     /// Turns directions (`up`, the orbit's) into the volume frame: identity
     /// until job/volume_frame.hpp places a camera given in LPS or RAS.
     glm::dmat3 directionsToVolume{1.0};

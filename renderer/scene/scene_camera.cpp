@@ -42,6 +42,7 @@ void parseOrbit(JsonReader& reader, Camera& camera) {
     camera.elevationDeg = reader.number("elevation", camera.elevationDeg, Range::open(-90.0, 90.0));
     camera.distance = reader.number("distance", camera.distance, 0.0, kMaxCoordinate);
     camera.target = reader.vec3("target", camera.target, kCoordinate);
+    camera.targetGiven = reader.has("target");
     camera.up = readDirection(reader, "up", false).value_or(camera.up);
 }
 
@@ -61,6 +62,7 @@ void parseLookAt(JsonReader& reader, Camera& camera) {
     const auto up = readDirection(reader, "up", false);
     camera.eye = eye.value_or(camera.eye);
     camera.target = target.value_or(camera.target);
+    camera.targetGiven = target.has_value();
     camera.up = up.value_or(camera.up);
     if (!eye || (reader.has("target") && !target) || (reader.has("up") && !up)) return;
 

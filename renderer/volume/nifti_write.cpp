@@ -1,9 +1,10 @@
 // NIfTI-1 writer (.nii, or .nii.gz gzip-compressed): a single-file header of
 // 348 bytes, an empty extension flag, then the voxels, little endian. A
-// volume with a place in a space (hasPhysicalPlacement) gets its affine in
-// RAS as both the sform (exact) and the qform (the nearest rotation, for
-// readers that take only that), codes 1 (scanner); any other gets the
-// spacing alone (codes 0). Written atomically, as the NRRD writer does.
+// volume in patient coordinates (Space::LPS) gets its affine in RAS as both
+// the sform (exact) and the qform (its rotation, for readers that take only
+// that; a sheared grid's is approximate), codes 1 (scanner); any other, a
+// space without anatomical meaning too, gets the spacing alone (codes 0). Written atomically, as
+// the NRRD writer does.
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "volume/byte_order.hpp"
@@ -124,7 +125,7 @@ Header headerOf(const Volume& v) {
     h.put<std::uint8_t>(123, 2); // xyzt_units: millimetres
     h.text(148, "cutaway export");
     double qfac = 1.0;
-    if (v.hasPhysicalPlacement()) {
+    if (v.space == Space::LPS) {
         // LPS to NIfTI's RAS: x and y negated.
         const glm::dmat3 flip(-1, 0, 0, 0, -1, 0, 0, 0, 1);
         const glm::dmat3 rotation = flip * v.direction;

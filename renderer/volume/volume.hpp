@@ -139,9 +139,9 @@ Volume readMetaImageBytes(std::span<const std::byte> bytes, const std::string& n
 /// any other gets `spacings`. Written to a temporary name, then renamed.
 void writeNrrd(const std::filesystem::path& path, const Volume& volume, bool gzip = true);
 /// Writes NIfTI-1 (.nii; .nii.gz gzip-compressed), little endian, the native
-/// voxel type and slope/intercept. A volume with a place in a space gets its
-/// affine, in NIfTI's RAS, as sform and qform (codes 1); any other the
-/// spacing alone. Written to a temporary name, then renamed.
+/// voxel type and slope/intercept. A volume in patient coordinates
+/// (Space::LPS) gets its affine, in NIfTI's RAS, as sform and qform (codes
+/// 1); any other the spacing alone. Written to a temporary name, then renamed.
 void writeNifti(const std::filesystem::path& path, const Volume& volume);
 
 } // namespace cutaway

@@ -4,6 +4,8 @@
 // after an edit; an invalid edit printed as an error, the watch going on; a
 // new preview after the next valid edit; and an end at SIGTERM (a background job ignores SIGINT).
 #include "cli_util.hpp"
+#include "volume/phantom.hpp"
+#include "volume/volume.hpp"
 
 #include <chrono>
 #include <csignal>
@@ -98,6 +100,19 @@ TEST_F(Watch, EditsGiveNewPreviewsAndAnInvalidOneAnErrorUntilSigterm) {
         << contentOf(m_dir / "log.txt");
     m_pid = -1;
     EXPECT_EQ(count("validation"), 0u) << contentOf(m_dir / "log.txt");
+}
+
+// A file the scene reads, rewritten under the same name: the renderer's
+// caches know the volume by its name, so the watch starts them anew.
+TEST_F(Watch, ARewrittenVolumeFileGivesANewPreview) {
+    writeNrrd(m_dir / "v.nrrd", makePhantom("head", {20, 20, 20}).values);
+    edit(R"({"version": 1, "volume": {"file": "v.nrrd"}, "render": {"size": [24, 24]}})");
+    start();
+    ASSERT_TRUE(waitFor([&] { return count("updated in") == 1; })) << contentOf(m_dir / "log.txt");
+    const std::string first = contentOf(m_dir / "p.png");
+    writeNrrd(m_dir / "v.nrrd", makePhantom("orange", {20, 20, 20}).values);
+    ASSERT_TRUE(waitFor([&] { return count("updated in") == 2; })) << contentOf(m_dir / "log.txt");
+    EXPECT_NE(contentOf(m_dir / "p.png"), first) << "the new volume shows";
 }
 
 TEST_F(CliTest, WatchRefusesAPreviewThatIsNotAPng) {
