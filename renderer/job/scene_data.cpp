@@ -124,7 +124,10 @@ std::vector<std::string> absentLabelWarnings(const Scene& scene, const Volume& l
 }
 
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume) {
-    const ValueRange range = valueRange(volume);
+    return sceneWindow(scene, valueRange(volume));
+}
+
+bake::ValueWindow sceneWindow(const Scene& scene, ValueRange range) {
     if (scene.volume.window) {
         const auto [lo, hi] = *scene.volume.window;
         bake::ValueWindow w{lo, hi};

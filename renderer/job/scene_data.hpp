@@ -43,6 +43,8 @@ std::shared_ptr<const Volume> loadSceneLabels(const Scene& scene,
 /// the scene's window cuts the range off, the voxels beyond classify as the
 /// volume's extreme values (ValueWindow::below, above).
 bake::ValueWindow sceneWindow(const Scene& scene, const Volume& volume);
+/// The same from the volume's value range (valueRange), already at hand.
+bake::ValueWindow sceneWindow(const Scene& scene, ValueRange range);
 
 /// What empty space (cuts, openings, the space a flap lifts into) holds when
 /// the CPU resamples the scan (sequential composition, `cutaway export`): the

@@ -95,7 +95,7 @@ std::vector<std::string> valueWarnings(const Scene& scene, const Volume& scan) {
         checkTransfer(scene.labelTransfers[i].transfer,
                       "/transfer/labels/" + std::to_string(i) + "/points", range, out);
     if (scene.volume.window) {
-        const bake::ValueWindow w = sceneWindow(scene, scan);
+        const bake::ValueWindow w = sceneWindow(scene, range);
         if (const std::size_t n = clampedChanged(scene.transfer, scan, w); n > 0)
             out.push_back("/volume/window: " + std::to_string(n) + " voxels (" +
                           number(100.0 * double(n) / double(scan.voxelCount())) +
@@ -112,7 +112,7 @@ std::vector<std::string> valueNotes(const Scene& scene, const Volume& scan) {
     std::vector<std::string> notes;
     const ValueRange range = valueRange(scan);
     notes.push_back("the volume's values span " + span(range.min, range.max));
-    const bake::ValueWindow window = sceneWindow(scene, scan);
+    const bake::ValueWindow window = sceneWindow(scene, range);
     if (scene.volume.window)
         notes.push_back("/volume/window: the texture holds " + span(window.lo, window.hi));
     std::optional<double> otsu;
@@ -143,22 +143,14 @@ ValueChecks::Key ValueChecks::keyOf(const Scene& scene, std::uint64_t scanId, bo
 
 const std::vector<std::string>& ValueChecks::warnings(const Scene& scene, const Volume& scan,
                                                       std::uint64_t scanId) {
-    Key key = keyOf(scene, scanId, false);
-    if (m_warningsKey != key) {
-        m_warnings = valueWarnings(scene, scan);
-        m_warningsKey = std::move(key);
-    }
-    return m_warnings;
+    return cached(m_warningsKey, m_warnings, keyOf(scene, scanId, false),
+                  [&] { return valueWarnings(scene, scan); });
 }
 
 const std::vector<std::string>& ValueChecks::notes(const Scene& scene, const Volume& scan,
                                                    std::uint64_t scanId) {
-    Key key = keyOf(scene, scanId, true);
-    if (m_notesKey != key) {
-        m_notes = valueNotes(scene, scan);
-        m_notesKey = std::move(key);
-    }
-    return m_notes;
+    return cached(m_notesKey, m_notes, keyOf(scene, scanId, true),
+                  [&] { return valueNotes(scene, scan); });
 }
 
 } // namespace cutaway::job

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace cutaway::job {
@@ -58,6 +59,17 @@ private:
         bool operator==(const Key&) const = default;
     };
     static Key keyOf(const Scene& scene, std::uint64_t scanId, bool forNotes);
+    /// `lines`, made again by `make` when `key` is not the one they were made for.
+    template <typename Make>
+    static const std::vector<std::string>& cached(std::optional<Key>& madeFor,
+                                                  std::vector<std::string>& lines, Key key,
+                                                  const Make& make) {
+        if (madeFor != key) {
+            lines = make();
+            madeFor = std::move(key);
+        }
+        return lines;
+    }
     std::optional<Key> m_warningsKey, m_notesKey;
     std::vector<std::string> m_warnings, m_notes;
 };
