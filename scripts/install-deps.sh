@@ -13,7 +13,7 @@ packages=(
   libglm-dev libopenexr-dev nlohmann-json3-dev libcli11-dev
   libgtest-dev zlib1g-dev libpng-dev python3-jsonschema
   libgdcm-dev libgdcm-tools python3-pydicom python3-numpy python3-nibabel
-  libtinygltf-dev
+  libtinygltf-dev openexr openimageio-tools
 )
 # The benchmark's comparison with VTK's CPU ray caster (bench/vtk_bench.py)
 # needs VTK's Python module and an X server for its render window; its

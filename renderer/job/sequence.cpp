@@ -123,8 +123,13 @@ std::future<double> writeFrameFiles(std::filesystem::path exr,
     auto write = [exrPath = std::move(exr), png = std::move(png), image = std::move(image),
                   options = std::move(options)]() mutable {
         const auto start = Clock::now();
+        // The channels beside the colour (docs/compositing.md).
         if (!image.operatorIds.empty())
             options.channels.push_back({"operator_id", &image.operatorIds});
+        if (!image.depth.empty()) options.channels.push_back({"Z", &image.depth});
+        if (!image.labelIds.empty()) options.channels.push_back({"label", &image.labelIds});
+        for (const ImageChannel& matte : image.mattes)
+            options.channels.push_back({matte.name, &matte.values});
         createOutputFolder(exrPath);
         writeExr(exrPath, image, options);
         if (png) {

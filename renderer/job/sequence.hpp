@@ -35,7 +35,8 @@ void createOutputFolder(const std::filesystem::path& file);
 
 /// Writes a frame's files on a thread of their own, as a sequence does while
 /// it renders the next frame: `exr` (its folder made if missing; the image's
-/// operator ids, when present, as the channel "operator_id") and then, when
+/// channels beside the colour, when present: "operator_id", "Z", "label" and
+/// the mattes) and then, when
 /// given, the preview `png`, which removes the EXR if it fails (a frame's
 /// files are written both or neither). The future gives the write's seconds
 /// or throws what it threw.

@@ -69,6 +69,14 @@ shader::FrameUniforms frameUniforms(const Scene& scene, const GpuVolume& volume,
 int wholeShininess(const Shading& shading);
 
 /// What a pass renders; the front prepared the rest.
+/// The meshes' targets (render/mesh_pass.hpp) and their readbacks: their
+/// colour (the colour target's format) and each pixel's distance from the eye
+/// (R32F, shared/frame.h's viewDepth; where the colour's alpha is 0 no mesh is).
+struct MeshTargets {
+    gpu::Image color, distance;
+    gpu::Buffer colorReadback, distanceReadback;
+};
+
 struct Frame {
     const Scene& scene;
     const GpuVolume& volume;
@@ -76,10 +84,9 @@ struct Frame {
     glm::uvec2 size;
     ShaderVariant variant;
     FrameInputs inputs;
-    /// The meshes' colour target and its readback, null without meshes: the
-    /// pass draws the meshes first, with its own depth target.
-    const gpu::Image* meshColor = nullptr;
-    const gpu::Buffer* meshReadback = nullptr;
+    /// The meshes' targets, null without meshes: the pass draws the meshes
+    /// first, with its own depth target, and copies both targets out.
+    const MeshTargets* meshes = nullptr;
 };
 
 } // namespace cutaway::render

@@ -142,12 +142,15 @@ void MeshPass::record(VkCommandBuffer cmd, VkDescriptorSet frameSet) {
 }
 
 void MeshPass::recordPass(VkCommandBuffer cmd, VkDescriptorSet frameSet, const gpu::Image& color,
-                          const gpu::Image& depthStencil) {
-    VkRenderingAttachmentInfo target{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                          const gpu::Image& distance, const gpu::Image& depthStencil) {
+    VkRenderingAttachmentInfo targets[2]{{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO}};
+    VkRenderingAttachmentInfo& target = targets[0];
     target.imageView = color.view.get();
     target.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     target.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR; // transparent black where no mesh is
     target.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    targets[1] = target;
+    targets[1].imageView = distance.view.get();
     VkRenderingAttachmentInfo depth = target;
     depth.imageView = depthStencil.view.get();
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
@@ -155,8 +158,8 @@ void MeshPass::recordPass(VkCommandBuffer cmd, VkDescriptorSet frameSet, const g
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {color.extent.width, color.extent.height}};
     info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &target;
+    info.colorAttachmentCount = 2;
+    info.pColorAttachments = targets;
     info.pDepthAttachment = &depth;
     info.pStencilAttachment = &depth;
     vkCmdBeginRendering(cmd, &info);

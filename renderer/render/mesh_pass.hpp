@@ -40,11 +40,11 @@ public:
 
     bool empty() const { return m_draws.empty(); }
     /// Step 1, a render pass of its own: clears `color` (the colour target's
-    /// format) and `depthStencil`, draws every mesh, and makes the depth
-    /// visible to the volume pass that loads it. Both images must be in
-    /// their attachment layouts.
+    /// format), `distance` (kMeshDistanceFormat) and `depthStencil`, draws
+    /// every mesh, and makes the depth visible to the volume pass that loads
+    /// it. The images must be in their attachment layouts.
     void recordPass(VkCommandBuffer cmd, VkDescriptorSet frameSet, const gpu::Image& color,
-                    const gpu::Image& depthStencil);
+                    const gpu::Image& distance, const gpu::Image& depthStencil);
 
 private:
     struct GpuMesh {

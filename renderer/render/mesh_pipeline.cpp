@@ -25,8 +25,8 @@ gpu::PipelineHandle createMeshPipeline(const gpu::Context& ctx, VkPipelineLayout
     VkPipelineColorBlendAttachmentState blend{};
     blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                            VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-    parts.blends = {blend};
-    parts.colorFormats = {ctx.formats().color};
+    parts.blends = {blend, blend};
+    parts.colorFormats = {ctx.formats().color, kMeshDistanceFormat};
     return gpu::createGraphicsPipeline(ctx, layout, parts);
 }
 

@@ -15,9 +15,13 @@ struct MeshVertex {
 };
 static_assert(sizeof(MeshVertex) == 40);
 
-/// Opaque triangles: depth LESS and written, colour written without blending,
-/// one colour attachment of the colour target's format. `layout`: frame set 0
-/// and the MeshDraw push constants.
+/// The format of the meshes' distance target (mesh.frag's second output).
+constexpr VkFormat kMeshDistanceFormat = VK_FORMAT_R32_SFLOAT;
+
+/// Opaque triangles: depth LESS and written, colour and distance written
+/// without blending, into an attachment of the colour target's format and one
+/// of kMeshDistanceFormat. `layout`: frame set 0 and the MeshDraw push
+/// constants.
 gpu::PipelineHandle createMeshPipeline(const gpu::Context& ctx, VkPipelineLayout layout);
 
 } // namespace cutaway::render

@@ -6,7 +6,7 @@
 
 namespace cutaway::render {
 
-static_assert(CW_SPEC_COUNT == 14, "ShaderConstants::kCount");
+static_assert(CW_SPEC_COUNT == 16, "ShaderConstants::kCount");
 
 ShaderConstants::ShaderConstants(const ShaderVariant& v, std::initializer_list<uint32_t> more)
     : m_values{} {
@@ -27,6 +27,8 @@ ShaderConstants::ShaderConstants(const ShaderVariant& v, std::initializer_list<u
     m_values[CW_SPEC_WHOLE_SHININESS] = static_cast<uint32_t>(v.wholeShininess);
     m_values[CW_SPEC_CUBIC] = v.cubic;
     m_values[CW_SPEC_REFINE] = static_cast<uint32_t>(v.refine);
+    m_values[CW_SPEC_LABEL_AOVS] = v.labelAovs;
+    m_values[CW_SPEC_MATTES] = v.mattes;
     for (uint32_t i = 0; i < kCount; ++i)
         m_entries[i] = {i, i * 4u, 4u};
     m_info = {kCount, m_entries, kCount * 4u, m_values};

@@ -14,10 +14,16 @@ struct ShaderVariant {
     /// CPU-device bindings (gpu::DeviceTuning::storageImages). Fixed per
     /// renderer, not per frame.
     bool storageImages = false;
-    /// A second colour attachment (slicing) receives the id of the proxy
-    /// whose sample was the first visible one in each pixel; the ray caster
-    /// always writes its id image, and copies it out only with this.
-    bool withOperatorId = false;
+    /// A second colour attachment (slicing) receives what each pixel's first
+    /// visible sample was: its proxy's id, its distance from the eye and its
+    /// label (/output/aovs); the ray caster always writes its id image, and
+    /// copies it out only with this.
+    bool withAovs = false;
+    /// The first visible sample's label in the id target (CW_SPEC_LABEL_AOVS).
+    bool labelAovs = false;
+    /// The mattes (/output/mattes): slicing's attachments 2 and 3
+    /// (CW_WRITE_MATTES), the ray caster's matte image (CW_SPEC_MATTES).
+    bool mattes = false;
     bool preintegrated = false;
     bool byLabel = false;
     bool shading = true;
@@ -63,7 +69,7 @@ public:
     const VkSpecializationInfo* info() const { return &m_info; }
 
 private:
-    static constexpr uint32_t kCount = 14; ///< CW_SPEC_COUNT
+    static constexpr uint32_t kCount = 16; ///< CW_SPEC_COUNT
     uint32_t m_values[kCount];
     VkSpecializationMapEntry m_entries[kCount];
     VkSpecializationInfo m_info;

@@ -1,6 +1,7 @@
 #include "render/volume_renderer.hpp"
 
 #include "render/frame_image.hpp"
+#include "render/mesh_pipeline.hpp"
 #include "render/raycast/raycast_pass.hpp"
 #include "render/slicing/slicing_pass.hpp"
 #include "shared/frame.h"
@@ -54,7 +55,9 @@ ShaderVariant VolumeRenderer::variantFor(const Scene& scene, const GpuVolume& vo
                                "this renderer's shaders cannot read them");
     ShaderVariant v;
     v.storageImages = m_tuning.storageImages();
-    v.withOperatorId = scene.output.operatorId;
+    v.withAovs = scene.output.anyAov();
+    v.labelAovs = scene.output.labelId;
+    v.mattes = !scene.output.mattes.empty();
     v.preintegrated = scene.render.classification == Classification::Preintegrated;
     v.byLabel = volume.labels && !scene.labelTransfers.empty();
     v.shading = scene.render.shading.enabled;
@@ -89,25 +92,30 @@ FrameInputs VolumeRenderer::inputsFor(const GpuVolume& volume) {
 
 void VolumeRenderer::ensureMeshTargets(glm::uvec2 size, bool withMeshes) {
     if (!withMeshes || m_meshSize != size) {
-        m_meshColor = {};
-        m_meshReadback = {};
+        m_meshTargets = {};
         m_meshSize = {0, 0};
     }
-    if (!withMeshes || m_meshColor.image) return;
+    if (!withMeshes || m_meshTargets.color.image) return;
     const VkDeviceSize texel = m_ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
-    m_meshColor =
-        gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {size.x, size.y, 1},
-                         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-    m_meshReadback = gpu::createBuffer(m_ctx, texel * size.x * size.y,
-                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::HostAccess::Read);
+    const VkDeviceSize pixels = VkDeviceSize(size.x) * size.y;
+    const auto usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    MeshTargets& t = m_meshTargets;
+    t.color = gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, m_ctx.formats().color, {size.x, size.y, 1},
+                               usage);
+    t.distance =
+        gpu::createImage(m_ctx, VK_IMAGE_TYPE_2D, kMeshDistanceFormat, {size.x, size.y, 1}, usage);
+    t.colorReadback = gpu::createBuffer(m_ctx, texel * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                        gpu::HostAccess::Read);
+    t.distanceReadback = gpu::createBuffer(m_ctx, 4 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           gpu::HostAccess::Read);
     m_meshSize = size;
 }
 
 Image VolumeRenderer::renderPasses(RenderPass& pass, const Frame& frame,
                                    shader::FrameUniforms& uniforms) {
     // /render/samples passes, each with its samples a further fraction of the
-    // spacing along the rays (shared/sampling.h), averaged; the operator ids
-    // are the first pass's.
+    // spacing along the rays (shared/sampling.h), averaged with the mattes;
+    // the first visible samples' channels are the first pass's.
     const int passes = frame.scene.render.samples;
     Image sum;
     for (int k = 0; k < passes; ++k) {
@@ -120,10 +128,18 @@ Image VolumeRenderer::renderPasses(RenderPass& pass, const Frame& frame,
         }
         for (std::size_t i = 0; i < sum.rgba.size(); ++i)
             sum.rgba[i] += image.rgba[i];
+        for (std::size_t m = 0; m < sum.mattes.size(); ++m)
+            for (std::size_t i = 0; i < sum.mattes[m].values.size(); ++i)
+                sum.mattes[m].values[i] += image.mattes[m].values[i];
     }
-    if (passes > 1)
+    if (passes > 1) {
+        const float scale = 1.0f / static_cast<float>(passes);
         for (float& v : sum.rgba)
-            v /= static_cast<float>(passes);
+            v *= scale;
+        for (ImageChannel& matte : sum.mattes)
+            for (float& v : matte.values)
+                v *= scale;
+    }
     return sum;
 }
 
@@ -144,11 +160,16 @@ Image VolumeRenderer::render(const Scene& scene, const GpuVolume& volume) {
                       size,
                       variantFor(scene, volume),
                       inputsFor(volume),
-                      withMeshes ? &m_meshColor : nullptr,
-                      withMeshes ? &m_meshReadback : nullptr};
+                      withMeshes ? &m_meshTargets : nullptr};
     m_stats = {0, 0, m_operators->bakes()};
     Image image = renderPasses(passFor(scene), frame, uniforms);
-    if (withMeshes) compositeMeshes(image, readImage(m_ctx, m_meshReadback, size.x, size.y));
+    labelIdsOf(image.labelIds, m_classification.lowestLabel());
+    if (withMeshes) {
+        const Image meshes = readImage(m_ctx, m_meshTargets.colorReadback, size.x, size.y);
+        meshDepthUnder(image, meshes,
+                       static_cast<const float*>(m_meshTargets.distanceReadback.mapped));
+        compositeMeshes(image, meshes);
+    }
     // A census counts samples: no background behind the counts.
     if (!frame.variant.census || scene.render.method != RenderMethod::Raycast)
         compositeUnder(image, scene.render.background);

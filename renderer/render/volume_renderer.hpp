@@ -97,8 +97,7 @@ private:
     bake::ValueStorageBindings m_storage;
     gpu::Buffer m_uniforms;
     glm::uvec2 m_meshSize{0, 0};
-    gpu::Image m_meshColor; ///< the meshes' image, only while frames have meshes
-    gpu::Buffer m_meshReadback;
+    MeshTargets m_meshTargets;             ///< only while frames have meshes
     std::unique_ptr<RenderPass> m_slicing; ///< made on first use, as the ray caster
     std::unique_ptr<RenderPass> m_raycast;
     bool m_census = false;

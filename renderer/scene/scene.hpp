@@ -211,6 +211,15 @@ struct RenderSettings {
 
 enum class PixelType { Half, Float };
 
+/// /output/mattes/N: one label's coverage matte.
+struct Matte {
+    std::string channel; ///< "matte." and the entry as written (a name or an id)
+    std::int64_t id = 0; ///< the label id
+};
+
+/// At most this many mattes (two colour targets of three channels each).
+inline constexpr std::size_t kMaxMattes = 6;
+
 /// /output/compression: OpenEXR's lossless compressions.
 enum class Compression { None, Rle, Zips, Zip, Piz };
 
@@ -220,7 +229,17 @@ struct OutputSettings {
     PixelType pixelType = PixelType::Half;    ///< /output/pixel_type: "half" | "float"
     Compression compression = Compression::Zip; ///< /output/compression
     bool png = false;                           ///< /output/png: also write an sRGB PNG preview
-    bool operatorId = false; ///< /output/operator_id: an EXR channel "operator_id" (see Image)
+    /// /output/aovs "operator_id" (or /output/operator_id, its alias): the
+    /// EXR channel "operator_id" (see Image)
+    bool operatorId = false;
+    bool depth = false;   ///< /output/aovs "Z": the first visible sample's planar depth
+    bool labelId = false; ///< /output/aovs "label": the first visible sample's label id
+    /// /output/mattes: a coverage matte per label, the EXR channel "matte.<entry>"
+    std::vector<Matte> mattes;
+    /// Whether any AOV needs the label volume on the device (label, mattes).
+    bool labelAovs() const { return labelId || !mattes.empty(); }
+    /// Whether any channel beyond colour is asked for.
+    bool anyAov() const { return operatorId || depth || labelAovs(); }
 };
 
 /// /animation/tracks/N/interpolation

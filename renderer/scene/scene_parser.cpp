@@ -123,6 +123,82 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
     });
 }
 
+/// /output/aovs: the names of the channels beside the colour.
+void parseAovs(JsonReader& reader, OutputSettings& output,
+               const std::optional<LabelSource>& labels) {
+    const nlohmann::json* list = reader.find("aovs");
+    if (!list) return;
+    const std::string pointer = reader.pointerOf("aovs");
+    if (!list->is_array() || list->size() > 3) {
+        reader.expected(pointer, "an array of \"Z\", \"label\" and \"operator_id\"", *list);
+        return;
+    }
+    std::vector<std::string> seen;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+        const nlohmann::json& item = (*list)[i];
+        const std::string at = pointer + "/" + std::to_string(i);
+        const std::string name = item.is_string() ? item.get<std::string>() : std::string();
+        if (name != "Z" && name != "label" && name != "operator_id") {
+            reader.expected(at, "\"Z\", \"label\" or \"operator_id\"", item);
+            continue;
+        }
+        if (std::find(seen.begin(), seen.end(), name) != seen.end()) {
+            reader.diagnostics().error(at, "\"" + name + "\" is listed twice");
+            continue;
+        }
+        seen.push_back(name);
+        if (name == "Z") output.depth = true;
+        if (name == "operator_id") output.operatorId = true;
+        if (name != "label") continue;
+        if (!labels)
+            reader.diagnostics().error(at, "\"label\" needs a /labels section (a label volume)");
+        output.labelId = true;
+    }
+}
+
+/// /output/mattes: one label name or id per matte.
+void parseMattes(JsonReader& reader, OutputSettings& output,
+                 const std::optional<LabelSource>& labels) {
+    const nlohmann::json* list = reader.find("mattes");
+    if (!list) return;
+    const std::string pointer = reader.pointerOf("mattes");
+    if (!list->is_array() || list->empty() || list->size() > kMaxMattes) {
+        reader.expected(pointer,
+                        "an array of 1 to " + std::to_string(kMaxMattes) + " label names or ids",
+                        *list);
+        return;
+    }
+    if (!labels) {
+        reader.diagnostics().error(pointer, "mattes need a /labels section (a label volume)");
+        return;
+    }
+    for (std::size_t i = 0; i < list->size(); ++i) {
+        const nlohmann::json& item = (*list)[i];
+        const std::string at = pointer + "/" + std::to_string(i);
+        Matte matte;
+        if (item.is_string()) {
+            const auto found = labels->names.find(item.get<std::string>());
+            if (found == labels->names.end()) {
+                reader.diagnostics().error(at, "unknown label name " + describeValue(item) +
+                                                   " (a matte takes one label: no patterns)");
+                continue;
+            }
+            matte = {"matte." + item.get<std::string>(), found->second};
+        } else if (const auto id = reader.asInteger(item, at, 0, 2147483647)) {
+            matte = {"matte." + std::to_string(*id), *id};
+        } else {
+            continue;
+        }
+        const auto same = [&](const Matte& m) { return m.id == matte.id; };
+        if (std::any_of(output.mattes.begin(), output.mattes.end(), same)) {
+            reader.diagnostics().error(at, "label " + std::to_string(matte.id) +
+                                               " already has a matte");
+            continue;
+        }
+        output.mattes.push_back(std::move(matte));
+    }
+}
+
 /// /output: where and how frames are written.
 ///
 ///  * pattern     string, path, non-empty, default "cutaway_####.exr"
@@ -133,10 +209,17 @@ void parseRender(JsonReader& reader, RenderSettings& render) {
 ///  * compression string, "none", "rle", "zips", "zip" or "piz", default "zip":
 ///                the EXR's compression, all lossless
 ///  * png         boolean, default false: also write an 8-bit sRGB PNG preview
-///  * operator_id boolean, default false: add a float channel "operator_id" to the EXR,
-///                the operator (0-based) each pixel's first visible sample came from,
-///                -1 for the untouched volume, -2 where nothing is visible
-void parseOutput(JsonReader& reader, OutputSettings& output) {
+///  * aovs        array of "Z", "label", "operator_id", default []: float channels
+///                beside the colour (docs/compositing.md): the planar depth of the
+///                first visible sample (a mesh's where it is nearer, infinity where
+///                nothing shows), that sample's label id (0 where none), the
+///                operator (0-based) it came from (-1 the untouched volume, -2 none)
+///  * operator_id boolean, default false: the same as "operator_id" in aovs
+///  * mattes      array of label names or ids, at most 6, default []: a channel
+///                "matte.<entry>" per entry, the share of each pixel's colour that
+///                samples of that label give
+void parseOutput(JsonReader& reader, OutputSettings& output,
+                 const std::optional<LabelSource>& labels) {
     output.pattern = reader.string("pattern", output.pattern);
     output.pixelType = reader.string("pixel_type", "half", {"half", "float"}) == "float"
                            ? PixelType::Float
@@ -150,6 +233,8 @@ void parseOutput(JsonReader& reader, OutputSettings& output) {
                                                  : Compression::Zip;
     output.png = reader.boolean("png", output.png);
     output.operatorId = reader.boolean("operator_id", output.operatorId);
+    parseAovs(reader, output, labels);
+    parseMattes(reader, output, labels);
 }
 
 } // namespace scene_detail
@@ -203,7 +288,8 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
     root.object("camera", [&](JsonReader& reader) { parseCamera(reader, scene.camera); });
     root.object("lights", [&](JsonReader& reader) { parseLights(reader, scene.lights); });
     root.object("render", [&](JsonReader& reader) { parseRender(reader, scene.render); });
-    root.object("output", [&](JsonReader& reader) { parseOutput(reader, scene.output); });
+    root.object("output",
+                [&](JsonReader& reader) { parseOutput(reader, scene.output, scene.labels); });
     root.object("animation", [&](JsonReader& reader) { parseAnimation(reader, scene.animation); });
     scene.frame = scene.animation.firstFrame;
     parseOperators(root, scene.operators, scene.labels);
@@ -222,6 +308,11 @@ Scene parseScene(const nlohmann::json& document, const std::filesystem::path& ba
                                   "under \"operator_composition\": \"sequential\" the scan is "
                                   "resampled and its labels no longer match: use \"range\"");
         }
+        if (scene.output.labelAovs())
+            diagnostics.error(scene.output.labelId ? "/output/aovs" : "/output/mattes",
+                              "label channels need \"operator_composition\": \"separate\" when "
+                              "there are several operators (the scan is resampled, its labels "
+                              "are not)");
         if (!scene.labelTransfers.empty())
             diagnostics.error("/transfer/labels",
                               "classification by label needs \"operator_composition\": "

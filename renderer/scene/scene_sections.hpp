@@ -33,7 +33,9 @@ void parseCamera(JsonReader& reader, Camera& camera);
 void parseLights(JsonReader& reader, Lights& lights);
 void parseRender(JsonReader& reader, RenderSettings& render);
 /// Leaves `output.pattern` as written; parseScene resolves it against the scene's folder.
-void parseOutput(JsonReader& reader, OutputSettings& output);
+/// `labels` resolves the label names of /output/mattes.
+void parseOutput(JsonReader& reader, OutputSettings& output,
+                 const std::optional<LabelSource>& labels);
 
 void parseAnimation(JsonReader& reader, Animation& animation);
 /// Reads /operators from the root (an array, so it takes the root reader).

@@ -519,13 +519,16 @@ vec4 lightOperatorSlab(OperatorUniforms op, sampler3D derivatives, sampler3D fea
 // is where one slab's approximations show most. `moved`: whether the colour
 // came from a point that moved with the operator (not the feature left in
 // place): the first sub-slab's that brings the slab to CW_ID_MIN_ALPHA.
+// `source`: the texture coordinate that sub-slab's material came from (its
+// label names the slab's in the label channels).
 vec4 refinedOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D derivatives,
                          sampler3D feature, int slot, int mode, Resolved front, Resolved back,
                          vec3 world, vec3 step, Viewer viewer, float obliquity, float stepMm,
-                         out bool moved) {
+                         out bool moved, out vec3 source) {
     Slab s = operatorSlab(mode, front, back);
     vec4 c = operatorSlabColor(op, s, obliquity);
     moved = !s.empty && s.middle.which != CW_CASE_MASKED;
+    source = s.middle.tc;
     if (c.a <= 0.0) return vec4(0.0);
     if (!refines())
         return lightOperatorSlab(op, derivatives, feature, slot, mode, s, c, world, viewer, stepMm);
@@ -545,6 +548,7 @@ vec4 refinedOperatorSlab(OperatorUniforms op, sampler3D map, sampler3D derivativ
                                                      at, viewer, stepMm / n);
         if (!named && sum.a >= CW_ID_MIN_ALPHA) {
             moved = part.middle.which != CW_CASE_MASKED;
+            source = part.middle.tc;
             named = true;
         }
         a = b;

@@ -47,18 +47,37 @@ layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(constant_id = CW_SPEC_CENSUS) const bool cwCensus = false;
 vec4 census = vec4(0.0);
 layout(set = 0, binding = CW_BIND_RAY_TARGET, rgba32f) uniform writeonly image2D target;
-// Which proxy the pixel's first visible sample came from (codes: see
-// CW_ID_BACKGROUND in sample_common.h), as slicing's operator-id attachment.
-layout(set = 0, binding = CW_BIND_RAY_ID, r32f) uniform writeonly image2D idTarget;
+// What the pixel's first visible sample was, as slicing's id attachment
+// (slice_common.h): which proxy it came from (codes: see CW_ID_BACKGROUND in
+// sample_common.h), its distance from the eye and its label's code.
+layout(set = 0, binding = CW_BIND_RAY_ID, rgba32f) uniform writeonly image2D idTarget;
+// With cwMattes, the mattes (slots 1..3 in layer 0, 4..6 in layer 1, alpha
+// the pixel's), as slicing's matte attachments.
+layout(set = 0, binding = CW_BIND_RAY_MATTES, rgba32f) uniform writeonly image2DArray matteTarget;
 // The depth of the scene's opaque meshes (render/mesh_pass.hpp), drawn before
 // the rays; 1 (the far plane) where there are none. A sample counts when it
 // lies in front of them or at their depth, as slicing's depth test decides.
 layout(set = 0, binding = CW_BIND_RAY_MESH_DEPTH) uniform sampler2D meshDepth;
 
-// Composites slab colour `c` from proxy `code` behind `sum`; the first
+// What a ray leaves besides its colour: `first` its first visible sample's
+// proxy code, distance and label code (the id target), and the mattes.
+struct RayAovs {
+    vec4 first;
+    vec3 mattes0, mattes1;
+};
+
+// Composites slab colour `c` from proxy `code`, taken at world point `at`
+// (its material from texture coordinate `tc`), behind `sum`; the first
 // visible one names the pixel's proxy.
-void composite(vec4 c, float code, inout vec4 sum, inout float id) {
-    if (id == 0.0 && c.a >= CW_ID_MIN_ALPHA) id = code;
+void composite(vec4 c, float code, vec3 at, vec3 tc, inout vec4 sum, inout RayAovs aov) {
+    if (aov.first.x == 0.0 && c.a >= CW_ID_MIN_ALPHA)
+        aov.first = vec4(code, slabDepth(at), labelCode(tc), 1.0);
+    if (cwMattes && c.a > 0.0) {
+        vec3 first, second;
+        matteShares(tc, (1.0 - sum.a) * c.a, first, second);
+        aov.mattes0 += first;
+        aov.mattes1 += second;
+    }
     sum += (1.0 - sum.a) * c;
 }
 // One texel per cell of kRayCellVoxels^3 (render/skipping/ray_cells.hpp): 0 where the
@@ -180,7 +199,7 @@ bool yieldToShading(inout uint live) {
 #endif
 
 // Samples k0..k1 of the untouched volume, composited into `sum`.
-void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) {
+void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout RayAovs aov) {
     float k = k0;
     vec3 tc = m.tcFirst + (k0 - m.first) * m.tcStep;
     vec3 tcStep = m.tcStep;
@@ -236,7 +255,7 @@ void backgroundRun(March m, float k0, float k1, inout vec4 sum, inout float id) 
         float back = cwPreintegrated ? next : front;
         vec4 c = classifySlab(front, back, m.obliquity, classLayer(tc));
         if (c.a > 0.0) c = backgroundSlab(c, front, back, tc, tcStep, m.viewer, m.obliquity);
-        composite(c, CW_ID_BACKGROUND, sum, id);
+        composite(c, CW_ID_BACKGROUND, pointAt(m, k), tc, sum, aov);
         if (sum.a >= u.termination.x) break;
         tc += tcStep;
         front = next;
@@ -277,7 +296,8 @@ float stepsOverEmptyBlocks(OperatorUniforms op, int slot, March m, float k, vec3
 // Samples k0..k1, all in the operator's deformed box, composited into `sum`.
 // Each resolves one point: a slab's back is the next one's front.
 void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, sampler3D feature,
-                 int slot, int mode, March m, float k0, float k1, inout vec4 sum, inout float id) {
+                 int slot, int mode, March m, float k0, float k1, inout vec4 sum,
+                 inout RayAovs aov) {
     float stepMm = m.spacing * m.obliquity;
     vec3 blockStep = mat3(op.worldToLocal) * (m.dir * (m.spacing / m.fd)) /
                      (op.mapHi.xyz - op.mapLo.xyz) * op.blocks.xyz;
@@ -330,10 +350,11 @@ void operatorRun(OperatorUniforms op, sampler3D map, sampler3D derivatives, samp
         bool moved;
         if (cwCensus) census.w += 1.0;
         vec3 at = pointAt(m, k);
+        vec3 source;
         vec4 c = refinedOperatorSlab(op, map, derivatives, feature, slot, mode, front,
                                      cwPreintegrated ? next : front, at, pointAt(m, k + 1.0) - at,
-                                     m.viewer, m.obliquity, stepMm, moved);
-        composite(c, moved ? op.band.y : CW_ID_BACKGROUND, sum, id);
+                                     m.viewer, m.obliquity, stepMm, moved, source);
+        composite(c, moved ? op.band.y : CW_ID_BACKGROUND, at, source, sum, aov);
         if (sum.a >= u.termination.x) break;
         front = next;
         k += 1.0;
@@ -396,7 +417,7 @@ vec2 operatorSamples(OperatorUniforms op, March m, float tEnd) {
 // (`box0`..`box2`, as operatorSamples) take its slabs, the others the
 // untouched volume's where they lie in `volume`.
 void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1, vec2 box2,
-                        inout vec4 sum, inout float id) {
+                        inout vec4 sum, inout RayAovs aov) {
     if (cwOperatorCount == 1) {
         // One box: the untouched volume before it, the box, the volume
         // after it. Three calls rather than the loop below: lavapipe runs
@@ -407,11 +428,11 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
         bool hit = box0.x <= box0.y;
         float before = hit ? box0.x - 1.0 : samples.y;
         float after = hit ? box0.y + 1.0 : samples.y + 1.0;
-        backgroundRun(m, max(samples.x, volume.x), min(before, volume.y), sum, id);
+        backgroundRun(m, max(samples.x, volume.x), min(before, volume.y), sum, aov);
         if (sum.a < u.termination.x)
             operatorRun(slots.ops[0], map0, derivatives0, feature0, 0, cwAlignment, m, box0.x,
-                        box0.y, sum, id);
-        if (sum.a < u.termination.x) backgroundRun(m, max(after, volume.x), volume.y, sum, id);
+                        box0.y, sum, aov);
+        if (sum.a < u.termination.x) backgroundRun(m, max(after, volume.x), volume.y, sum, aov);
     }
 #ifndef CW_RAY_ONE_OPERATOR
     else {
@@ -425,7 +446,7 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
             runFrom(k, box1, 1, slot, end);
             runFrom(k, box2, 2, slot, end);
             if (slot < 0) {
-                backgroundRun(m, max(k, volume.x), min(end, volume.y), sum, id);
+                backgroundRun(m, max(k, volume.x), min(end, volume.y), sum, aov);
                 k = end + 1.0;
                 if (k > samples.y || sum.a >= u.termination.x) break;
                 end = samples.y;
@@ -435,13 +456,13 @@ void marchWithOperators(March m, vec2 samples, vec2 volume, vec2 box0, vec2 box1
             }
             if (slot == 0) {
                 operatorRun(slots.ops[0], map0, derivatives0, feature0, 0, cwAlignment, m, k, end,
-                            sum, id);
+                            sum, aov);
             } else if (cwOperatorCount > 1 && slot == 1) {
                 operatorRun(slots.ops[1], map1, derivatives1, feature1, 1, cwAlignment1, m, k, end,
-                            sum, id);
+                            sum, aov);
             } else if (cwOperatorCount > 2 && slot == 2) {
                 operatorRun(slots.ops[2], map2, derivatives2, feature2, 2, cwAlignment2, m, k, end,
-                            sum, id);
+                            sum, aov);
             }
             k = end + 1.0;
         }
@@ -504,7 +525,7 @@ void main() {
     samples = unite(unite(unite(samples, box0), box1), box2);
 #endif
     vec4 sum = vec4(0.0);
-    float id = 0.0;
+    RayAovs aov = RayAovs(vec4(0.0), vec3(0.0), vec3(0.0));
     if (samples.x <= samples.y) {
         m.first = samples.x;
         vec3 p = pointAt(m, m.first);
@@ -514,13 +535,17 @@ void main() {
         vec3 voxelStep = abs(m.tcStep) * vec3(textureSize(volumeTex, 0));
         m.slabsInMargin = max(voxelStep.x, max(voxelStep.y, voxelStep.z)) <= ray.cellsPerTexture.w;
 #ifdef CW_RAY_OPERATORS
-        marchWithOperators(m, samples, volume, box0, box1, box2, sum, id);
+        marchWithOperators(m, samples, volume, box0, box1, box2, sum, aov);
 #else
-        backgroundRun(m, samples.x, samples.y, sum, id);
+        backgroundRun(m, samples.x, samples.y, sum, aov);
 #endif
     }
     imageStore(target, pixel, cwCensus ? census : sum);
-    imageStore(idTarget, pixel, vec4(id));
+    imageStore(idTarget, pixel, aov.first);
+    if (cwMattes) {
+        imageStore(matteTarget, ivec3(pixel, 0), vec4(aov.mattes0, sum.a));
+        imageStore(matteTarget, ivec3(pixel, 1), vec4(aov.mattes1, sum.a));
+    }
 }
 
 #endif

@@ -41,6 +41,10 @@ layout(constant_id = CW_SPEC_CUBIC) const bool cwCubic = false;
 layout(constant_id = CW_SPEC_REFINE) const int cwRefine = 1;
 // The shininess when it is a whole number (scene range: up to 512), else 0.
 layout(constant_id = CW_SPEC_WHOLE_SHININESS) const int cwWholeShininess = 0;
+// The label channels (/output/aovs "label", /output/mattes): classTex
+// carries each voxel's label and matte (classTexel).
+layout(constant_id = CW_SPEC_LABEL_AOVS) const bool cwLabelAovs = false;
+layout(constant_id = CW_SPEC_MATTES) const bool cwMattes = false;
 #define CW_SHADING_ON(u) cwShading
 #define CW_LIGHT_COUNT(u) cwLightCount
 
@@ -242,12 +246,43 @@ float obliquityOf(vec3 toEye) {
     return 1.0 / max(dot(-toEye, u.viewDir.xyz), 1e-3);
 }
 
+// classTex's texel of the voxel nearest to texture coordinate tc: its
+// classification layer in bits 0-7 and, with the label channels
+// (cwLabelAovs, cwMattes), its matte (1..6, 0 none) in bits 8-11 and its
+// label's code (the id less the lowest id, plus 1) in bits 12-31
+// (render/classify/label_classes.hpp, labelChannelTexels).
+uint classTexel(vec3 tc) {
+    ivec3 dims = textureSize(classTex, 0);
+    ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
+    return texelFetch(classTex, voxel, 0).r;
+}
+
 // The classification layer of the voxel nearest to texture coordinate tc.
 float classLayer(vec3 tc) {
     if (!cwByLabel) return 0.0;
-    ivec3 dims = textureSize(classTex, 0);
-    ivec3 voxel = clamp(ivec3(floor(tc * vec3(dims))), ivec3(0), dims - 1);
-    return float(texelFetch(classTex, voxel, 0).r);
+    return float(classTexel(tc) & 0xffu);
+}
+
+// The "Z" channel's depth of the slab whose front lies at `at` (both methods
+// sample on the slicing planes, u.viewDir.w apart along the view): a
+// pre-integrated slab's middle, since its opacity lies between its planes;
+// a point sample's own plane.
+float slabDepth(vec3 at) {
+    return viewDepth(u, at) + (cwPreintegrated ? 0.5 * u.viewDir.w : 0.0);
+}
+
+// The label code of the voxel nearest to tc (see classTexel); 0 without
+// the label channel.
+float labelCode(vec3 tc) {
+    return cwLabelAovs ? float(classTexel(tc) >> 12) : 0.0;
+}
+
+// Opacity `alpha` of a sample at tc in the mattes' channels: slots 1..3 in
+// `first`, 4..6 in `second` (see classTexel).
+void matteShares(vec3 tc, float alpha, out vec3 first, out vec3 second) {
+    int slot = int((classTexel(tc) >> 8) & 0xfu);
+    first = alpha * vec3(equal(ivec3(slot), ivec3(1, 2, 3)));
+    second = alpha * vec3(equal(ivec3(slot), ivec3(4, 5, 6)));
 }
 
 // Premultiplied colour of the slab from `front` to `back` (normalized values),

@@ -21,5 +21,5 @@ void main() {
     vec4 c = classifySlab(front, back, obliquity, classLayer(tc));
     if (c.a > 0.0) // the lights' half vectors only where something shows
         c = backgroundSlab(c, front, back, tc, tcStep, viewerOf(toEye, u), obliquity);
-    emit(c, CW_ID_BACKGROUND);
+    emit(c, CW_ID_BACKGROUND, at, tc);
 }

@@ -25,8 +25,9 @@ void main() {
     Resolved back = front; // post-classified slices have no back
     if (cwPreintegrated) back = resolve(op, operatorMap, featureTex, 0, cwAlignment, at + step);
     bool moved;
+    vec3 source;
     vec4 c =
         refinedOperatorSlab(op, operatorMap, operatorDerivatives, featureTex, 0, cwAlignment, front,
-                            back, at, step, viewerOf(toEye, u), obliquity, stepMm, moved);
-    emit(c, moved ? op.band.y : CW_ID_BACKGROUND);
+                            back, at, step, viewerOf(toEye, u), obliquity, stepMm, moved, source);
+    emit(c, moved ? op.band.y : CW_ID_BACKGROUND, at, source);
 }

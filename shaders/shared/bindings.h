@@ -18,9 +18,10 @@
 // Set 0 of the ray caster only.
 #define CW_BIND_RAY_TARGET 5      // rgba32f storage image: the colour
 #define CW_BIND_RAY_CELLS 6       // r8ui storage image: the cells' distances (ray_cells.hpp)
+#define CW_BIND_RAY_MATTES 7      // rgba32f storage image array, 2 layers: the mattes
 #define CW_BIND_RAY_OPERATORS 8   // storage buffer: CW_RAY_MAX_OPERATORS OperatorUniforms
 #define CW_BIND_RAY_BLOCKS 9      // r8ui storage images 9, 10, 11: each operator slot's blocks
-#define CW_BIND_RAY_ID 12         // r32f storage image: the operator-id codes
+#define CW_BIND_RAY_ID 12         // rgba32f storage image: the AOVs (code, distance, label)
 #define CW_BIND_RAY_VISIBLE 13    // storage buffer: VisibleRuns (shared/visible_runs.h)
 #define CW_BIND_RAY_MESH_DEPTH 14 // sampler2D: the meshes' depth
 
@@ -48,9 +49,11 @@
 #define CW_SPEC_CENSUS 9
 #define CW_SPEC_BRICKED_GRADIENTS 10
 #define CW_SPEC_WHOLE_SHININESS 11
-#define CW_SPEC_CUBIC 12  // /render/filter "cubic"
-#define CW_SPEC_REFINE 13 // /render/refine
-#define CW_SPEC_COUNT 14
+#define CW_SPEC_CUBIC 12      // /render/filter "cubic"
+#define CW_SPEC_REFINE 13     // /render/refine
+#define CW_SPEC_LABEL_AOVS 14 // /output/aovs "label": the first visible sample's label
+#define CW_SPEC_MATTES 15     // /output/mattes (the ray caster; slicing: CW_WRITE_MATTES)
+#define CW_SPEC_COUNT 16
 
 #ifdef __cplusplus
 #include "shared/operator_frame.h"

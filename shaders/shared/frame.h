@@ -32,6 +32,13 @@ struct FrameUniforms {
                    // /render/jitter, y this pass's offset in spacings, z the seed
 };
 
+// The planar depth, in mm, of point `p` in frame `u`: its distance from the
+// eye's plane along the view axis, for either projection (what a
+// compositor's depth of field reads). The "Z" channel (docs/compositing.md).
+CW_FUNC float viewDepth(FrameUniforms u, vec3 p) {
+    return dot(p - vec3(u.eye), vec3(u.viewDir));
+}
+
 CW_NAMESPACE_END
 
 #ifdef __cplusplus

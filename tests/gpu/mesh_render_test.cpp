@@ -5,6 +5,8 @@
 #include "../io/temp_dir.hpp"
 #include "gpu_fixture.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -136,6 +138,40 @@ TEST_F(MeshRenderTest, AMeshInFrontHidesTheVolumeAndOneBehindShowsThroughIt) {
         if (y > 0) {
             EXPECT_GT(std::abs(both.pixel(24, 24)[0] - meshOnly.pixel(24, 24)[0]), 0.05f);
         }
+    }
+}
+
+TEST_F(MeshRenderTest, TheDepthChannelIsTheMeshsWhereTheMeshIsNearer) {
+    // The eye 200 mm in front of the volume's centre: a cube's face at y = f
+    // lies at Z = 200 + f (orthographic: along the view, from the eye's plane).
+    m_scene.camera.useOrbit = false;
+    m_scene.camera.eye = glm::dvec3(0.0, -200.0, 0.0);
+    m_scene.output.depth = true;
+    const Image volumeOnly = renderScene(ctx(), m_scene);
+    for (const double y : {-40.0, 40.0}) { // in front of the volume box [-24, 24]^3, behind it
+        SCOPED_TRACE(y < 0 ? "in front" : "behind");
+        Scene s = m_scene;
+        s.meshes.push_back(cube(m_file, {0.0, y, 0.0}, 8.0));
+        const Image both = renderScene(ctx(), s);
+        const Image meshOnly = renderScene(ctx(), withoutVolume(s));
+        const float face = float(200.0 + y - 8.0);
+        int meshWins = 0, volumeWins = 0;
+        for (std::size_t p = 0; p < both.depth.size(); ++p) {
+            const bool mesh = meshOnly.rgba[4 * p + 3] == 1.0f;
+            const float v = volumeOnly.depth[p];
+            EXPECT_EQ(meshOnly.depth[p], mesh ? face : INFINITY) << p;
+            const float expected = mesh ? std::min(face, v) : v;
+            if (std::isinf(expected))
+                EXPECT_EQ(both.depth[p], expected) << p;
+            else
+                EXPECT_NEAR(both.depth[p], expected, 1e-3f) << p;
+            meshWins += mesh && face < v;
+            volumeWins += mesh && v < face;
+        }
+        // Control: in front, the mesh is nearer wherever it is; behind, the
+        // head is nearer in the middle of it.
+        EXPECT_GT(y < 0 ? meshWins : volumeWins, 12 * 12);
+        EXPECT_EQ(y < 0 ? volumeWins : 0, 0);
     }
 }
 

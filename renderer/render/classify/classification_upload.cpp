@@ -36,17 +36,29 @@ gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const Gpu
     return table;
 }
 
-gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume) {
+gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
+                         std::int64_t& lowest) {
     const VkPipelineStageFlags2 readers =
         VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    const VkExtent3D extent{uint32_t(volume.dims.x), uint32_t(volume.dims.y),
+                            uint32_t(volume.dims.z)};
+    if (volume.labels && scene.output.labelAovs()) {
+        const LabelChannelTexels texels(*volume.labels, scene.labelTransfers, scene.output.mattes);
+        lowest = texels.lowest();
+        return gpu::createSampledVolume(
+            ctx, VK_FORMAT_R32_UINT, extent, 4,
+            [&](std::size_t first, std::size_t count, std::byte* dst) {
+                texels.write(first, count, reinterpret_cast<std::uint32_t*>(dst));
+            },
+            readers);
+    }
     if (!volume.labels || scene.labelTransfers.empty()) {
         const std::uint8_t none = 0;
         return gpu::createSampledVolume(ctx, VK_FORMAT_R8_UINT, {1, 1, 1}, &none, 1, readers);
     }
     const LabelBytes layers = classLayers(*volume.labels, scene.labelTransfers);
     return gpu::createSampledVolume(
-        ctx, VK_FORMAT_R8_UINT,
-        {uint32_t(volume.dims.x), uint32_t(volume.dims.y), uint32_t(volume.dims.z)}, 1,
+        ctx, VK_FORMAT_R8_UINT, extent, 1,
         [&](std::size_t first, std::size_t count, std::byte* dst) {
             layers.write(first, count, reinterpret_cast<std::uint8_t*>(dst));
         },
@@ -66,12 +78,15 @@ void ClassificationTables::update(const Scene& scene, const GpuVolume& volume, d
         m_transfer = uploadTransfer(m_ctx, scene, volume, sliceMm);
         m_transferKey = std::move(transferKey);
     }
-    ClassesKey classesKey{volume.serial, {}};
+    ClassesKey classesKey{volume.serial, {}, withLabels && scene.output.labelAovs(), {}};
     if (withLabels)
         for (const LabelTransfer& t : scene.labelTransfers)
             classesKey.ids.push_back(t.ids);
+    if (classesKey.channels)
+        for (const Matte& m : scene.output.mattes)
+            classesKey.mattes.push_back(m.id);
     if (!m_classes.image || m_classesKey != classesKey) {
-        m_classes = uploadClasses(m_ctx, scene, volume);
+        m_classes = uploadClasses(m_ctx, scene, volume, m_lowestLabel);
         m_classesKey = std::move(classesKey);
     }
 }

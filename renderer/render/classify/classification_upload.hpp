@@ -20,8 +20,11 @@ namespace cutaway::render {
 gpu::Image uploadTransfer(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
                           double sliceMm);
 
-/// Each voxel's classification layer (R8_UINT), or a single 0 without labels.
-gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume);
+/// Each voxel's classification layer (R8_UINT), or a single 0 without labels;
+/// with label channels (OutputSettings::labelAovs) the texels of
+/// LabelChannelTexels (R32_UINT), whose lowest label id goes to `lowest`.
+gpu::Image uploadClasses(const gpu::Context& ctx, const Scene& scene, const GpuVolume& volume,
+                         std::int64_t& lowest);
 
 /// The frame's tables and layers, remade only when what they come from
 /// changes (a turntable keeps them: pre-integration costs ~35 ms a table).
@@ -33,6 +36,8 @@ public:
     void update(const Scene& scene, const GpuVolume& volume, double sliceMm);
     const gpu::Image& transfer() const { return m_transfer; }
     const gpu::Image& classes() const { return m_classes; }
+    /// The label volume's lowest id, when classes() holds label channels.
+    std::int64_t lowestLabel() const { return m_lowestLabel; }
 
 private:
     /// What uploadTransfer's table comes from.
@@ -48,6 +53,8 @@ private:
     struct ClassesKey {
         std::uint64_t volume = 0;
         std::vector<std::vector<std::int64_t>> ids; ///< per /transfer/labels entry
+        bool channels = false;                      ///< label channels (LabelChannelTexels)
+        std::vector<std::int64_t> mattes;           ///< their mattes' labels
         bool operator==(const ClassesKey&) const = default;
     };
     const gpu::Context& m_ctx;
@@ -55,6 +62,7 @@ private:
     std::optional<TransferKey> m_transferKey;
     gpu::Image m_classes;
     std::optional<ClassesKey> m_classesKey;
+    std::int64_t m_lowestLabel = 0;
 };
 
 } // namespace cutaway::render

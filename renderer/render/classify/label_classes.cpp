@@ -73,6 +73,50 @@ LabelBytes labelIndicator(const Volume& labels, const std::vector<std::int64_t>&
 
 namespace {
 
+// A matte's slot (1 + its index) per label id.
+std::unordered_map<std::int64_t, std::uint8_t> matteSlots(const std::vector<Matte>& mattes) {
+    std::unordered_map<std::int64_t, std::uint8_t> map;
+    for (std::size_t i = 0; i < mattes.size(); ++i)
+        map.emplace(mattes[i].id, static_cast<std::uint8_t>(i + 1));
+    return map;
+}
+
+} // namespace
+
+LabelChannelTexels::LabelChannelTexels(const Volume& labels,
+                                       const std::vector<LabelTransfer>& transfers,
+                                       const std::vector<Matte>& mattes)
+    : m_labels(labels), m_layers(classLayers(labels, transfers)),
+      m_mattes(labels, matteSlots(mattes)) {
+    const ValueRange range = valueRange(labels);
+    m_lowest = static_cast<std::int64_t>(std::llround(range.min));
+    const double span = std::round(range.max) - std::round(range.min) + 1.0;
+    constexpr double kCodes = (1 << 20) - 1; // bits 12-31, 0 reserved for none
+    constexpr double kExact = 1 << 24;       // float32 holds every integer up to here
+    if (std::abs(range.min) > kExact || std::abs(range.max) > kExact)
+        throw InputError("the label volume holds ids beyond +-16777216 (from " +
+                         std::to_string(std::llround(range.min)) + " to " +
+                         std::to_string(std::llround(range.max)) +
+                         "), which the float32 label channel cannot hold exactly");
+    if (span > kCodes)
+        throw InputError("the label volume's ids span " + std::to_string(std::llround(span)) +
+                         " values (from " + std::to_string(m_lowest) +
+                         "); the label channels hold at most 1048575");
+}
+
+void LabelChannelTexels::write(std::size_t first, std::size_t count, std::uint32_t* out) const {
+    std::vector<std::uint8_t> layers(count), mattes(count);
+    m_layers.write(first, count, layers.data());
+    m_mattes.write(first, count, mattes.data());
+    for (std::size_t j = 0; j < count; ++j) {
+        const std::int64_t id = std::llround(m_labels.value(first + j));
+        const auto code = static_cast<std::uint32_t>(id - m_lowest + 1);
+        out[j] = layers[j] | (std::uint32_t(mattes[j]) << 8) | (code << 12);
+    }
+}
+
+namespace {
+
 // Where a message about an operator's segment points: its alignment in the
 // scene file, and its name.
 std::string where(const OperatorSpec& spec) {

@@ -39,6 +39,28 @@ LabelBytes classLayers(const Volume& labels, const std::vector<LabelTransfer>& t
 /// Per voxel: 1 where the label is one of `ids`, else 0.
 LabelBytes labelIndicator(const Volume& labels, const std::vector<std::int64_t>& ids);
 
+/// Per voxel, the texel of the classification texture when a frame writes
+/// label channels (/output/aovs "label", /output/mattes; the shaders'
+/// classTexel): its classification layer (classLayers) in bits 0-7, its
+/// matte (1 + its index in `mattes`, 0 none) in bits 8-11 and its label's
+/// code (the id less the lowest id of the volume, plus 1) in bits 12-31.
+/// Keeps a reference to `labels`.
+class LabelChannelTexels {
+public:
+    /// Throws InputError when the volume's ids span more than the codes hold.
+    LabelChannelTexels(const Volume& labels, const std::vector<LabelTransfer>& transfers,
+                       const std::vector<Matte>& mattes);
+    /// The texels of voxels [first, first + count), x fastest.
+    void write(std::size_t first, std::size_t count, std::uint32_t* out) const;
+    /// The volume's lowest label id: code c is label lowest() + c - 1.
+    std::int64_t lowest() const { return m_lowest; }
+
+private:
+    const Volume& m_labels;
+    LabelBytes m_layers, m_mattes;
+    std::int64_t m_lowest = 0;
+};
+
 /// The segment of interest of a segment alignment (`spec.alignment`), a byte
 /// per voxel, 1 inside: the voxels of `scan` whose value lies in its range,
 /// or whose label in `labels` is one of its labels. Keeps references to both.

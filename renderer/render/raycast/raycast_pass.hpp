@@ -18,8 +18,8 @@ public:
     Image render(const Frame& frame, FrameStats& stats) override;
 
 private:
-    void ensureTargets(glm::uvec2 size, bool withMeshes);
-    /// The meshes into Frame::meshColor and the rays' depth, copied out.
+    void ensureTargets(glm::uvec2 size, bool withMeshes, bool withMattes);
+    /// The meshes into Frame::meshes and the rays' depth, copied out.
     void recordMeshes(VkCommandBuffer cmd, const Frame& frame, VkDescriptorSet frameSet);
     Image readBack(const Frame& frame) const;
 
@@ -28,8 +28,10 @@ private:
     glm::uvec2 m_targetSize{0, 0};
     gpu::Image m_target; ///< RGBA32F storage image
     gpu::Buffer m_readback;
-    gpu::Image m_id; ///< R32F storage image: each pixel's operator-id code
+    gpu::Image m_id; ///< RGBA32F storage image: the AOVs (Raycaster::Targets)
     gpu::Buffer m_idReadback;
+    gpu::Image m_mattes; ///< RGBA32F, 2 layers; 1x1 while frames have no mattes
+    gpu::Buffer m_mattesReadback;
     gpu::Image m_depth; ///< the meshes' depth for the rays, only while frames have meshes
     gpu::ImageViewHandle m_depthView; ///< its depth aspect, sampled
     gpu::Image m_noMeshDepth;         ///< 1x1 R32F of 1: the rays' depth without meshes

@@ -78,7 +78,7 @@ Raycaster::Raycaster(const gpu::Context& ctx, VkSampler linear, VkSampler neares
     const auto buffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     std::vector<VkDescriptorSetLayoutBinding> bindings =
         frameInputBindings(cs, cs, m_storageImages);
-    for (uint32_t b : {CW_BIND_RAY_TARGET, CW_BIND_RAY_CELLS, CW_BIND_RAY_ID})
+    for (uint32_t b : {CW_BIND_RAY_TARGET, CW_BIND_RAY_CELLS, CW_BIND_RAY_ID, CW_BIND_RAY_MATTES})
         bindings.push_back({b, storage, 1, cs, nullptr});
     for (uint32_t i = 0; i < CW_RAY_MAX_OPERATORS; ++i)
         bindings.push_back({CW_BIND_RAY_BLOCKS + i, storage, 1, cs, nullptr});
@@ -104,13 +104,15 @@ gpu::DescriptorSet Raycaster::bind(const FrameInputs& in, const MeshDepth& meshD
         m_ctx, m_setLayout.get(),
         {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
          {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5},
-         {storage, 3 + CW_RAY_MAX_OPERATORS + (m_storageImages ? 3u : 0u)},
+         {storage, 4 + CW_RAY_MAX_OPERATORS + (m_storageImages ? 3u : 0u)},
          {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2}});
     writeFrameInputs(m_ctx, set.set, in);
     gpu::writeImageDescriptor(m_ctx, set.set, CW_BIND_RAY_TARGET, storage, targets.color.view.get(),
                               VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeImageDescriptor(m_ctx, set.set, CW_BIND_RAY_ID, storage, targets.id.view.get(),
                               VK_IMAGE_LAYOUT_GENERAL);
+    gpu::writeImageDescriptor(m_ctx, set.set, CW_BIND_RAY_MATTES, storage,
+                              targets.mattes.view.get(), VK_IMAGE_LAYOUT_GENERAL);
     gpu::writeBufferDescriptor(m_ctx, set.set, CW_BIND_RAY_VISIBLE,
                                VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, m_visible.buffer.get(),
                                m_visible.size);
@@ -221,7 +223,7 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
                        const std::vector<Operator>& operators, bool operatorTiles) {
     if (operators.size() > CW_RAY_MAX_OPERATORS)
         throw std::logic_error("the ray caster takes at most CW_RAY_MAX_OPERATORS operators");
-    for (const gpu::Image* target : {&targets.color, &targets.id})
+    for (const gpu::Image* target : {&targets.color, &targets.id, &targets.mattes})
         gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                         VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
@@ -251,7 +253,7 @@ void Raycaster::record(VkCommandBuffer cmd, VkDescriptorSet set, const Targets& 
         vkCmdDispatch(cmd, groups.x, groups.y, 1);
     }
     if (!opTiles.empty()) recordOperators(cmd, set, variant, operators, opTiles, push);
-    for (const gpu::Image* target : {&targets.color, &targets.id})
+    for (const gpu::Image* target : {&targets.color, &targets.id, &targets.mattes})
         gpu::transition(cmd, *target, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,

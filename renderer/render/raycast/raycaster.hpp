@@ -72,19 +72,22 @@ public:
         int alignment;
         operators::WorldBox box; ///< its deformed box (the map's domain)
     };
-    /// What a frame writes: premultiplied colour over nothing (RGBA32F) and
-    /// the operator-id code of each pixel's first visible sample (R32F: 0
-    /// nothing visible, 2 the untouched volume, 3 + i operator i), both
-    /// storage images.
+    /// What a frame writes, all RGBA32F storage images: premultiplied colour
+    /// over nothing; what each pixel's first visible sample was (x its
+    /// proxy's code: 0 nothing visible, 2 the untouched volume, 3 + i
+    /// operator i; y its distance from the eye; z its label's code; w 1
+    /// where there was one); the mattes, two layers (written with
+    /// ShaderVariant::mattes only; else a stand-in).
     struct Targets {
         const gpu::Image& color;
         const gpu::Image& id;
+        const gpu::Image& mattes;
     };
     /// Set 0 of a frame with these `inputs` and `operators` (see record()).
     gpu::DescriptorSet bind(const FrameInputs& inputs, const MeshDepth& meshDepth,
                             const Targets& targets, const std::vector<Operator>& operators) const;
 
-    /// Records the pass: both targets go from UNDEFINED to
+    /// Records the pass: the targets go from UNDEFINED to
     /// TRANSFER_SRC_OPTIMAL. The rays march through the occupied cells'
     /// bounds, stepping over the empty cells, and through the `operators`'
     /// deformed boxes (at most CW_RAY_MAX_OPERATORS, not overlapping), whose

@@ -3,10 +3,14 @@
 #include "gpu/pipeline.hpp"
 #include "slice_frag.spv.h"
 #include "slice_id_frag.spv.h"
+#include "slice_id_mattes_frag.spv.h"
 #include "slice_id_storage_frag.spv.h"
+#include "slice_id_storage_mattes_frag.spv.h"
 #include "slice_operator_frag.spv.h"
 #include "slice_operator_id_frag.spv.h"
+#include "slice_operator_id_mattes_frag.spv.h"
 #include "slice_operator_id_storage_frag.spv.h"
+#include "slice_operator_id_storage_mattes_frag.spv.h"
 #include "slice_operator_storage_frag.spv.h"
 #include "slice_storage_frag.spv.h"
 #include "slice_vert.spv.h"
@@ -18,16 +22,23 @@ namespace {
 using gpu::Spirv;
 using gpu::spirv;
 
-// The fragment shader of `proxy`'s polygons: each comes plain and in the
-// storage flavour (CW_STORAGE_PATHS, shaders/CMakeLists.txt).
-Spirv fragmentSpirv(SliceProxy proxy, bool withOperatorId, bool storage) {
+// The fragment shader of `proxy`'s polygons for `variant`: each comes plain
+// and in the storage flavour (CW_STORAGE_PATHS, shaders/CMakeLists.txt), and
+// the one that writes the id target also with the mattes (CW_WRITE_MATTES).
+Spirv fragmentSpirv(SliceProxy proxy, const ShaderVariant& variant) {
+    const bool storage = variant.storageImages, mattes = variant.mattes;
     if (proxy == SliceProxy::Operator) {
-        if (withOperatorId)
+        if (variant.withAovs && mattes)
+            return storage ? spirv(slice_operator_id_storage_mattes_frag_spv)
+                           : spirv(slice_operator_id_mattes_frag_spv);
+        if (variant.withAovs)
             return storage ? spirv(slice_operator_id_storage_frag_spv)
                            : spirv(slice_operator_id_frag_spv);
         return storage ? spirv(slice_operator_storage_frag_spv) : spirv(slice_operator_frag_spv);
     }
-    if (withOperatorId)
+    if (variant.withAovs && mattes)
+        return storage ? spirv(slice_id_storage_mattes_frag_spv) : spirv(slice_id_mattes_frag_spv);
+    if (variant.withAovs)
         return storage ? spirv(slice_id_storage_frag_spv) : spirv(slice_id_frag_spv);
     return storage ? spirv(slice_storage_frag_spv) : spirv(slice_frag_spv);
 }
@@ -36,13 +47,10 @@ Spirv fragmentSpirv(SliceProxy proxy, bool withOperatorId, bool storage) {
 
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,
                                         const ShaderVariant& variant, SliceProxy proxy) {
-    const bool withOperatorId = variant.withOperatorId;
     const bool stencilOnly = proxy == SliceProxy::OperatorStencil;
     auto vert = gpu::createShaderModule(ctx, slice_vert_spv, sizeof(slice_vert_spv));
     gpu::ShaderModuleHandle frag;
-    if (!stencilOnly)
-        frag = gpu::createShaderModule(ctx,
-                                       fragmentSpirv(proxy, withOperatorId, variant.storageImages));
+    if (!stencilOnly) frag = gpu::createShaderModule(ctx, fragmentSpirv(proxy, variant));
     const ShaderConstants constants(variant);
     gpu::GraphicsPipelineParts parts;
     parts.vertex = vert.get();
@@ -91,9 +99,10 @@ gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayou
     }
     parts.blends = {blend};
     parts.colorFormats = {ctx.formats().color};
-    if (withOperatorId) { // same rule for the id target
+    // The same rule for the id and matte targets, of the colour's format.
+    for (std::size_t i = 1; i < aovTargetCount(variant); ++i) {
         parts.blends.push_back(blend);
-        parts.colorFormats.push_back(kOperatorIdFormat);
+        parts.colorFormats.push_back(ctx.formats().color);
     }
     parts.extraDynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE};
     parts.fragmentConstants = stencilOnly ? nullptr : constants.info();

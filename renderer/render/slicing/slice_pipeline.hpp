@@ -24,8 +24,13 @@ enum class SliceProxy {
     OperatorStencil ///< no fragment shader, no colour: writes ref over an operator's whole box
 };
 
-/// The operator-id target: RGBA16F, see shaders/glsl/slice_common.h.
-constexpr VkFormat kOperatorIdFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+/// The colour attachments of a frame of `variant`, all of the colour
+/// target's format: the colour; with AOVs the id target (proxy code,
+/// distance, label code; shaders/glsl/slice_common.h); with mattes two
+/// matte targets.
+inline std::size_t aovTargetCount(const ShaderVariant& variant) {
+    return variant.withAovs ? (variant.mattes ? 4 : 2) : 1;
+}
 
 /// The pipeline of `proxy`'s polygons for a frame of `variant`.
 gpu::PipelineHandle createSlicePipeline(const gpu::Context& ctx, VkPipelineLayout layout,

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <glm/gtc/packing.hpp>
 
 namespace cutaway::render {
 namespace {
@@ -53,20 +52,20 @@ SlicingPass::SlicingPass(const PassResources& shared, VkDescriptorSetLayout oper
     m_layout = gpu::createPipelineLayout(shared.ctx, {shared.frameLayout, operatorLayout});
 }
 
-void SlicingPass::ensureTargets(glm::uvec2 size, bool withOperatorId) {
+void SlicingPass::ensureTargets(glm::uvec2 size, const ShaderVariant& variant) {
     const gpu::Context& ctx = m_shared.ctx;
     if (m_targetSize != size) {
         m_color = {};
         m_depthStencil = {};
         m_readback = {};
-        m_operatorId = {};
-        m_operatorIdReadback = {};
+        m_aovs = {};
+        m_aovReadbacks = {};
         m_targetSize = size;
     }
     const VkExtent3D extent{size.x, size.y, 1};
     const VkDeviceSize pixels = VkDeviceSize(size.x) * size.y;
+    const VkDeviceSize texel = ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
     if (!m_color.image) {
-        const VkDeviceSize texel = ctx.formats().color == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 8;
         m_color =
             gpu::createImage(ctx, VK_IMAGE_TYPE_2D, ctx.formats().color, extent,
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
@@ -77,12 +76,13 @@ void SlicingPass::ensureTargets(glm::uvec2 size, bool withOperatorId) {
         m_readback = gpu::createBuffer(ctx, texel * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                        gpu::HostAccess::Read);
     }
-    if (withOperatorId && !m_operatorId.image) {
-        m_operatorId =
-            gpu::createImage(ctx, VK_IMAGE_TYPE_2D, kOperatorIdFormat, extent,
+    for (std::size_t t = 0; t + 1 < aovTargetCount(variant); ++t) {
+        if (m_aovs[t].image) continue;
+        m_aovs[t] =
+            gpu::createImage(ctx, VK_IMAGE_TYPE_2D, ctx.formats().color, extent,
                              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-        m_operatorIdReadback = gpu::createBuffer(ctx, 8 * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                                 gpu::HostAccess::Read);
+        m_aovReadbacks[t] = gpu::createBuffer(ctx, texel * pixels, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                              gpu::HostAccess::Read);
     }
 }
 
@@ -153,7 +153,7 @@ Image SlicingPass::render(const Frame& frame, FrameStats& stats) {
     const std::size_t vertexBytes = slices.triangles.size() * sizeof(glm::vec3);
     ensureVertexCapacity(vertexBytes);
     if (vertexBytes) std::memcpy(m_vertices.mapped, slices.triangles.data(), vertexBytes);
-    ensureTargets(frame.size, frame.variant.withOperatorId);
+    ensureTargets(frame.size, frame.variant);
 
     const bool storage = frame.inputs.storageImages;
     gpu::DescriptorSet set =
@@ -170,29 +170,33 @@ Image SlicingPass::render(const Frame& frame, FrameStats& stats) {
 
 void SlicingPass::record(VkCommandBuffer cmd, const Frame& frame, const SliceSet& slices,
                          VkDescriptorSet frameSet, VkDescriptorSet saturationSet) {
-    const bool withId = frame.variant.withOperatorId;
     std::vector<const gpu::Image*> targets{&m_color};
-    if (withId) targets.push_back(&m_operatorId);
+    for (std::size_t t = 0; t + 1 < aovTargetCount(frame.variant); ++t)
+        targets.push_back(&m_aovs[t]);
     for (const gpu::Image* target : targets)
         toAttachment(cmd, *target);
-    if (frame.meshColor) toAttachment(cmd, *frame.meshColor);
+    const MeshTargets* meshes = frame.meshes;
+    if (meshes) {
+        toAttachment(cmd, meshes->color);
+        toAttachment(cmd, meshes->distance);
+    }
     gpu::transition(cmd, m_depthStencil, VK_IMAGE_LAYOUT_UNDEFINED,
                     VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, VK_PIPELINE_STAGE_2_NONE,
                     VK_ACCESS_2_NONE,
                     VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
                         VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
                     VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT);
-    if (frame.meshColor)
-        m_shared.meshes.recordPass(cmd, frameSet, *frame.meshColor, m_depthStencil);
+    if (meshes)
+        m_shared.meshes.recordPass(cmd, frameSet, meshes->color, meshes->distance, m_depthStencil);
 
-    VkRenderingAttachmentInfo colors[2];
+    VkRenderingAttachmentInfo colors[4];
     for (std::size_t t = 0; t < targets.size(); ++t)
         colors[t] =
             clearedAttachment(targets[t]->view.get(), VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
     VkRenderingAttachmentInfo ds = clearedAttachment(
         m_depthStencil.view.get(), VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
     VkRenderingAttachmentInfo depth = ds; // the meshes' depth, when there are any
-    if (frame.meshColor) depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    if (meshes) depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
     info.renderArea = {{0, 0}, {m_color.extent.width, m_color.extent.height}};
     info.layerCount = 1;
@@ -223,8 +227,12 @@ void SlicingPass::record(VkCommandBuffer cmd, const Frame& frame, const SliceSet
         vkCmdEndRendering(cmd);
     }
     copyToReadback(cmd, m_color, m_readback);
-    if (withId) copyToReadback(cmd, m_operatorId, m_operatorIdReadback);
-    if (frame.meshColor) copyToReadback(cmd, *frame.meshColor, *frame.meshReadback);
+    for (std::size_t t = 0; t + 1 < targets.size(); ++t)
+        copyToReadback(cmd, m_aovs[t], m_aovReadbacks[t]);
+    if (meshes) {
+        copyToReadback(cmd, meshes->color, meshes->colorReadback);
+        copyToReadback(cmd, meshes->distance, meshes->distanceReadback);
+    }
     gpu::barrierTransferToHost(cmd);
 }
 
@@ -310,16 +318,12 @@ void SlicingPass::recordSlices(VkCommandBuffer cmd, const SliceSet& slices,
 Image SlicingPass::readBack(const Frame& frame) const {
     const int width = static_cast<int>(frame.size.x), height = static_cast<int>(frame.size.y);
     Image image = readImage(m_shared.ctx, m_readback, width, height);
-    if (frame.variant.withOperatorId) {
-        // codes: 0 nothing visible, 2 the untouched volume, 3 + i operator i
-        const auto* halves = static_cast<const uint16_t*>(m_operatorIdReadback.mapped);
-        image.operatorIds.resize(image.rgba.size() / 4);
-        for (std::size_t p = 0; p < image.operatorIds.size(); ++p) {
-            const float code = glm::unpackHalf1x16(halves[4 * p]);
-            const float covered = glm::unpackHalf1x16(halves[4 * p + 3]);
-            image.operatorIds[p] = operatorIdOf(code, covered > 0.5f);
-        }
-    }
+    if (!frame.variant.withAovs) return image;
+    std::array<std::vector<float>, 3> texels;
+    for (std::size_t t = 0; t + 1 < aovTargetCount(frame.variant); ++t)
+        texels[t] = readColorTexels(m_shared.ctx, m_aovReadbacks[t], image.rgba.size());
+    const AovTexels aovs{texels[0].data(), {texels[1].data(), texels[2].data()}};
+    readAovs(frame.scene.output, aovs, image);
     return image;
 }
 

@@ -18,6 +18,7 @@
 #include "render/slicing/slice_pipeline.hpp"
 #include "render/slicing/slicer.hpp"
 
+#include <array>
 #include <map>
 #include <utility>
 #include <vector>
@@ -40,8 +41,9 @@ private:
     /// The frame's proxies (m_roles says what each is): each operator's
     /// deformed box, then its regions, then the volume's occupied bricks.
     std::vector<Proxy> proxies(const Frame& frame);
-    /// Its colour, depth-stencil and (with `withOperatorId`) id targets.
-    void ensureTargets(glm::uvec2 size, bool withOperatorId);
+    /// Its colour and depth-stencil targets, and the AOV targets `variant`
+    /// asks for (aovTargetCount).
+    void ensureTargets(glm::uvec2 size, const ShaderVariant& variant);
     void ensureVertexCapacity(std::size_t bytes);
     /// The pipeline of `proxy`'s polygons for `variant`, made on first use.
     VkPipeline pipelineFor(ShaderVariant variant, SliceProxy proxy);
@@ -53,7 +55,7 @@ private:
                       const ShaderVariant& variant, std::size_t begin, std::size_t end);
     /// Clears the stencil (before its references cycle back to a value).
     void clearStencil(VkCommandBuffer cmd) const;
-    /// The volume's image and ids from the readbacks.
+    /// The volume's image and AOVs from the readbacks.
     Image readBack(const Frame& frame) const;
 
     PassResources m_shared;
@@ -66,8 +68,9 @@ private:
     gpu::Image m_color;
     gpu::Image m_depthStencil; ///< the meshes' depth, then the saturation's marks
     gpu::Buffer m_readback;
-    gpu::Image m_operatorId; ///< only while frames ask for output.operator_id
-    gpu::Buffer m_operatorIdReadback;
+    /// The id target, then the two matte targets: only while frames ask for them.
+    std::array<gpu::Image, 3> m_aovs;
+    std::array<gpu::Buffer, 3> m_aovReadbacks;
 };
 
 } // namespace cutaway::render
