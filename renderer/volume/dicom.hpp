@@ -19,10 +19,16 @@
 // slices at one position, multi-frame or colour images, and pixel data GDCM
 // cannot decode. Files that are not DICOM images (a DICOMDIR, a text file, a
 // report) are passed over and counted.
+//
+// GDCM parses in a child process: a file on which it aborts (a header cut
+// short) is refused naming the file. Folders are walked without following
+// symbolic links to folders (a link to a parent would loop) or to files
+// outside the folder.
 #include "volume/volume.hpp"
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,5 +73,19 @@ std::string describeSeries(const DicomListing& listing);
 
 /// Reads the series `selector` picks under `path` (pickSeries).
 Volume readDicom(const std::filesystem::path& path, std::string_view selector = {});
+
+namespace detail {
+
+/// Told each file's name before GDCM reads it.
+using DicomProgress = std::function<void(const std::string& file)>;
+
+/// listDicom and readDicom in this process (they run these in a child
+/// process, volume/child_process.hpp, so that GDCM's assertions on a damaged
+/// file cannot abort cutaway): for the tests that show why.
+DicomListing listDicomHere(const std::filesystem::path& path, const DicomProgress& progress = {});
+Volume readDicomHere(const std::filesystem::path& path, std::string_view selector,
+                     const DicomProgress& progress = {});
+
+} // namespace detail
 
 } // namespace cutaway

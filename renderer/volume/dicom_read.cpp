@@ -194,12 +194,17 @@ void fill(Volume& v, std::vector<Slice>& slices) {
 
 } // namespace
 
-Volume readDicom(const fs::path& path, std::string_view selector) {
-    const DicomListing listing = listDicom(path);
+namespace detail {
+
+Volume readDicomHere(const fs::path& path, std::string_view selector,
+                     const DicomProgress& progress) {
+    const DicomListing listing = listDicomHere(path, progress);
     const DicomSeries& series = pickSeries(listing, selector, path);
     std::vector<Slice> slices;
-    for (const fs::path& file : series.files)
+    for (const fs::path& file : series.files) {
+        if (progress) progress(file.string());
         slices.push_back(readSlice(file.string()));
+    }
     checkAlike(slices);
     const Slice& first = slices.front();
     const glm::dvec3 normal = glm::normalize(glm::cross(first.row, first.column));
@@ -215,5 +220,7 @@ Volume readDicom(const fs::path& path, std::string_view selector) {
     fill(v, slices);
     return v;
 }
+
+} // namespace detail
 
 } // namespace cutaway

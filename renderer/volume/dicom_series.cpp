@@ -7,12 +7,12 @@
 
 #include <algorithm>
 #include <fstream>
-#include <gdcmDirectory.h>
 #include <gdcmMediaStorage.h>
 #include <gdcmReader.h>
 #include <gdcmScanner.h>
 #include <gdcmTag.h>
 #include <map>
+#include <set>
 #include <sstream>
 
 namespace cutaway {
@@ -38,6 +38,32 @@ std::string valueOf(const gdcm::Scanner& scanner, const std::string& file, const
     return std::string(detail::trim(s));
 }
 
+// The tags the listing reads of one file ("" where absent).
+struct FileTags {
+    bool dicom = false; // GDCM read its header up to the tags
+    std::string uid, number, description, modality, rows, columns, sopClass;
+};
+
+// One file's tags, through GDCM's Scanner (a file at a time, so that a
+// crash inside GDCM is known to be this file's: the progress names it).
+FileTags scanFile(const std::string& file) {
+    gdcm::Scanner scanner;
+    for (const gdcm::Tag& t :
+         {kSeriesUid, kSeriesNumber, kSeriesDescription, kModality, kRows, kColumns, kSopClass})
+        scanner.AddTag(t);
+    if (!scanner.Scan({file})) throw InputError(file + ": GDCM could not scan it for DICOM tags");
+    FileTags t;
+    t.dicom = scanner.IsKey(file.c_str());
+    t.uid = valueOf(scanner, file, kSeriesUid);
+    t.number = valueOf(scanner, file, kSeriesNumber);
+    t.description = valueOf(scanner, file, kSeriesDescription);
+    t.modality = valueOf(scanner, file, kModality);
+    t.rows = valueOf(scanner, file, kRows);
+    t.columns = valueOf(scanner, file, kColumns);
+    t.sopClass = valueOf(scanner, file, kSopClass);
+    return t;
+}
+
 bool hasPreamble(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     char magic[4] = {};
@@ -61,17 +87,52 @@ bool isDicomdir(const fs::path& path) {
     return detail::toLower(path.filename().string()) == "dicomdir";
 }
 
+// Whether `inner` (canonical) lies inside folder `outer` (canonical).
+bool inside(const fs::path& inner, const fs::path& outer) {
+    auto i = inner.begin();
+    for (auto o = outer.begin(); o != outer.end(); ++o, ++i)
+        if (i == inner.end() || *i != *o) return false;
+    return true;
+}
+
+// The regular files of folder `root` (its subfolders' too when `recursive`),
+// each once, sorted by name (so the order does not depend on the file
+// system). Symbolic links to folders are not followed (a link to a parent
+// would loop), links to files only to a file inside `root`.
+std::vector<std::string> filesIn(const fs::path& root, bool recursive) {
+    std::error_code ec;
+    const fs::path top = fs::canonical(root, ec);
+    if (ec) throw InputError(root.string() + ": " + ec.message());
+    std::vector<std::string> files;
+    std::set<fs::path> seen; // canonical paths: a file linked twice is read once
+    const auto consider = [&](const fs::directory_entry& entry) {
+        std::error_code e;
+        if (!entry.is_regular_file(e)) return; // a link to a file counts as one
+        const fs::path target = fs::canonical(entry.path(), e);
+        if (e || (entry.is_symlink(e) && !inside(target, top))) return;
+        if (seen.insert(target).second) files.push_back(entry.path().string());
+    };
+    const auto options = fs::directory_options::skip_permission_denied;
+    if (recursive) {
+        for (fs::recursive_directory_iterator it(root, options, ec), end; !ec && it != end;
+             it.increment(ec))
+            consider(*it);
+    } else {
+        for (fs::directory_iterator it(root, options, ec), end; !ec && it != end; it.increment(ec))
+            consider(*it);
+    }
+    if (ec) throw InputError(root.string() + ": cannot list its files: " + ec.message());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
 // The files to scan for `path`: a folder's, recursively; a DICOMDIR's
 // folder's; a single file's folder's (not recursively).
 std::vector<std::string> candidateFiles(const fs::path& path) {
     std::error_code ec;
     const bool folder = fs::is_directory(path, ec);
     const fs::path root = folder ? path : path.parent_path().empty() ? "." : path.parent_path();
-    gdcm::Directory directory;
-    directory.Load(root.string(), folder || isDicomdir(path));
-    std::vector<std::string> files = directory.GetFilenames();
-    std::sort(files.begin(), files.end()); // the scan's order does not depend on the file system
-    return files;
+    return filesIn(root, folder || isDicomdir(path));
 }
 
 int parsedCount(const std::string& text) {
@@ -98,24 +159,22 @@ bool isDicomPath(const fs::path& path) {
     return fs::is_regular_file(path, ec) && hasPreamble(path);
 }
 
-DicomListing listDicom(const fs::path& path) {
+namespace detail {
+
+DicomListing listDicomHere(const fs::path& path, const DicomProgress& progress) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(path.string() + ": no such file or folder");
     const std::vector<std::string> files = candidateFiles(path);
-    gdcm::Scanner scanner;
-    for (const gdcm::Tag& t :
-         {kSeriesUid, kSeriesNumber, kSeriesDescription, kModality, kRows, kColumns, kSopClass})
-        scanner.AddTag(t);
-    if (!files.empty() && !scanner.Scan(files))
-        throw InputError(path.string() + ": could not scan its files for DICOM series");
     DicomListing listing;
     std::map<std::string, DicomSeries> byUid;
     const bool namesOneFile = fs::is_regular_file(path, ec) && !isDicomdir(path);
     for (const std::string& file : files) {
-        const std::string uid = valueOf(scanner, file, kSeriesUid);
+        if (progress) progress(file);
+        const FileTags tags = scanFile(file);
+        const std::string& uid = tags.uid;
         // Not DICOM, or no image (a DICOMDIR, a structured report).
-        if (!scanner.IsKey(file.c_str()) || uid.empty() || valueOf(scanner, file, kRows).empty()) {
-            if (damaged(file, uid, valueOf(scanner, file, kSopClass)))
+        if (!tags.dicom || uid.empty() || tags.rows.empty()) {
+            if (damaged(file, uid, tags.sopClass))
                 throw InputError(file + ": a DICOM image without its image (truncated or "
                                         "damaged), or a DICOM file GDCM cannot read");
             ++listing.ignored;
@@ -124,11 +183,10 @@ DicomListing listDicom(const fs::path& path) {
         DicomSeries& s = byUid[uid];
         if (s.files.empty()) {
             s.uid = uid;
-            s.number = valueOf(scanner, file, kSeriesNumber);
-            s.description = valueOf(scanner, file, kSeriesDescription);
-            s.modality = valueOf(scanner, file, kModality);
-            s.dims = {parsedCount(valueOf(scanner, file, kColumns)),
-                      parsedCount(valueOf(scanner, file, kRows)), 0};
+            s.number = tags.number;
+            s.description = tags.description;
+            s.modality = tags.modality;
+            s.dims = {parsedCount(tags.columns), parsedCount(tags.rows), 0};
         }
         s.files.push_back(file);
         s.dims.z = int(s.files.size());
@@ -144,6 +202,8 @@ DicomListing listDicom(const fs::path& path) {
                          " file(s) looked at)");
     return listing;
 }
+
+} // namespace detail
 
 std::string describeSeries(const DicomListing& listing) {
     std::ostringstream out;

@@ -78,6 +78,36 @@ TEST_F(DicomCli, ASceneReadsTheSeriesItNames) {
     EXPECT_NE(r.output.find("no series matches \"7\""), std::string::npos) << r.output;
 }
 
+// A series with a slice cut short in its header: `info`, `validate` and
+// `render` each end with exit 2 and a message naming the slice (GDCM's
+// assertion on it ends a child process, not cutaway), and nothing is written.
+// A series folder holding links to its parent and to itself is read once, in
+// the time it takes (a walk that follows them never ends).
+TEST_F(DicomCli, ACutSliceIsAnErrorAndLinksDoNotLoop) {
+    const fs::path folder = series("cut", "");
+    fs::resize_file(folder / "slice0005.dcm", 300);
+    const fs::path scene = write("s.json", R"({"version": 1, "volume": {"file": "cut"},
+        "render": {"size": [24, 24]}})");
+    const fs::path exr = m_dir / "f_#.exr";
+    for (const std::string& command : {"info " + folder.string(), "validate " + scene.string(),
+                                       "render " + scene.string() + " -o " + exr.string()}) {
+        SCOPED_TRACE(command);
+        const CommandResult r = runCutaway(command);
+        EXPECT_EQ(r.code, 2) << r.output;
+        EXPECT_NE(r.output.find("slice0005.dcm: a damaged or truncated DICOM file"),
+                  std::string::npos)
+            << r.output;
+    }
+    EXPECT_FALSE(fs::exists(m_dir / "f_0.exr")) << "nothing is written";
+
+    const fs::path loops = series("loops", "");
+    fs::create_directory_symlink("..", loops / "up");
+    fs::create_directory_symlink(".", loops / "self");
+    const CommandResult r = runCutaway("info " + loops.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("16 x 16 x 12  12 file(s)"), std::string::npos) << r.output;
+}
+
 // The example scene on the series written from ct_head renders as the
 // same scene on the scan itself (the same values and index grid): the
 // EXRs agree to 1e-3 (measured: identical).

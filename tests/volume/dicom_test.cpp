@@ -156,6 +156,61 @@ TEST_F(Dicom, AForeignFileIsPassedOverATruncatedSliceRefused) {
     EXPECT_NE(message.find("slice0004.dcm"), std::string::npos) << message;
 }
 
+// A DICOM file cut short in its header (here 128 zeros and "DICM", and a real
+// slice cut at 300 bytes inside a series folder) reaches an assertion in
+// GDCM's reader. GDCM parses in a child process, so that is an error naming
+// the file, not an abort of cutaway. Control: the same parse in this process
+// dies of the assertion (a death test).
+TEST_F(Dicom, AHeaderCutShortIsRefusedNotAnAbort) {
+    fs::create_directories(path("stub"));
+    writeFile("stub/stub.dcm", std::string(128, '\0') + "DICM");
+    const fs::path stub = path("stub/stub.dcm");
+    for (const fs::path& named : {stub, path("stub")}) {
+        SCOPED_TRACE(named.string());
+        const std::string listed = messageOf([&] { listDicom(named); });
+        EXPECT_NE(listed.find(stub.string() + ": a damaged or truncated DICOM file"),
+                  std::string::npos)
+            << listed;
+        const std::string read = messageOf([&] { readDicom(named); });
+        EXPECT_NE(read.find(stub.string() + ": a damaged or truncated DICOM file"),
+                  std::string::npos)
+            << read;
+    }
+    const fs::path folder = write("series");
+    fs::resize_file(folder / "slice0003.dcm", 300);
+    const std::string cut = messageOf([&] { readDicom(folder); });
+    EXPECT_NE(cut.find("slice0003.dcm: a damaged or truncated DICOM file"), std::string::npos)
+        << cut;
+
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(detail::listDicomHere(stub), "") << "control: GDCM aborts on it in-process";
+}
+
+// Symbolic links: one to the folder's parent and one to the folder itself
+// (which a walk that follows them never leaves), one to a file outside the
+// folder and one to a slice beside it. None is followed: the series reads
+// back once, each slice once. Control: a real subfolder is still searched
+// (its second series is listed).
+TEST_F(Dicom, LinksAreNotFollowedOutOfTheFolderOrIntoLoops) {
+    const fs::path folder = write("ct");
+    fs::create_directory_symlink("..", folder / "up");
+    fs::create_directory_symlink(".", folder / "self");
+    writeFile("outside.dcm", "a file beside the folder");
+    fs::create_symlink(path("outside.dcm"), folder / "outside.dcm");
+    fs::create_symlink("slice0002.dcm", folder / "again.dcm");
+    const DicomListing listing = listDicom(folder);
+    ASSERT_EQ(listing.series.size(), 1u);
+    EXPECT_EQ(listing.series[0].files.size(), std::size_t(kDims.z)) << "each slice once";
+    expectSameValues(readDicom(folder), source());
+
+    const fs::path sub = folder / "sub";
+    const std::string command = "/usr/bin/python3 " + std::string(CUTAWAY_SOURCE_DIR) +
+                                "/scripts/write_dicom.py " + path("source.nrrd").string() + " " +
+                                sub.string() + " --series-number 2 > /dev/null";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    EXPECT_EQ(listDicom(folder).series.size(), 2u) << "control: subfolders are searched";
+}
+
 // A stack that is not one regular grid is refused, saying why.
 TEST_F(Dicom, IrregularStacksAreRefused) {
     const std::string missing = messageOf([&] { readDicom(write("gap", "--skip-slice 4")); });
