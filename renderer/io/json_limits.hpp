@@ -21,10 +21,18 @@ inline constexpr std::size_t kMaxSceneStringBytes = std::size_t{1} << 20;
 struct JsonLimits {
     int maxDepth = kMaxJsonDepth;
     std::size_t maxStringBytes = static_cast<std::size_t>(-1); ///< no bound by default
+    /// Refuse a key written twice in one object (a parser keeps one of them
+    /// silently). Keys are compared as written, escapes and all.
+    bool uniqueKeys = false;
 };
 
+/// Bounds of a scene's text: scene files and --set values.
+inline constexpr JsonLimits kSceneJsonLimits{kMaxJsonDepth, kMaxSceneStringBytes, true};
+
 /// Throws InputError "SOURCE:LINE:COLUMN: ..." at the first place where
-/// `text` nests deeper than the limits allow or holds a longer string.
+/// `text` nests deeper than the limits allow, holds a longer string, or
+/// (with uniqueKeys) repeats a key in one object: that error names the JSON
+/// pointer and both places.
 /// Unbalanced or otherwise malformed text is left for the parser to report.
 void checkJsonText(std::string_view text, const std::string& source, const JsonLimits& limits);
 

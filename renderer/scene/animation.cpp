@@ -127,7 +127,7 @@ SceneSetting parseSetting(const std::string& assignment) {
         throw InputError(name + ": a value of " + std::to_string(text.size() >> 10) +
                          " KiB, more than the " + std::to_string(kMaxSceneStringBytes >> 10) +
                          " KiB a scene's value may be");
-    checkJsonText(text, name, JsonLimits{kMaxJsonDepth, kMaxSceneStringBytes});
+    checkJsonText(text, name, kSceneJsonLimits);
     setting.value = nlohmann::json::parse(text, nullptr, false);
     if (setting.value.is_discarded()) setting.value = text;
     return setting;

@@ -235,7 +235,7 @@ nlohmann::json parseJsonText(std::string_view text, const std::string& source) {
         throw InputError(source + ": " + std::to_string(text.size() >> 20) +
                          " MiB of JSON, more than the " + std::to_string(kMaxSceneBytes >> 20) +
                          " MiB a scene may hold");
-    checkJsonText(text, source, JsonLimits{kMaxJsonDepth, kMaxSceneStringBytes});
+    checkJsonText(text, source, kSceneJsonLimits);
     try {
         return nlohmann::json::parse(text.begin(), text.end());
     } catch (const nlohmann::json::parse_error& e) {

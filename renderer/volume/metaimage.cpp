@@ -13,6 +13,7 @@
 #include "volume/volume.hpp"
 #include "volume/voxel_data.hpp"
 
+#include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -108,6 +109,24 @@ VoxelType elementType(const MetaHeader& h) {
 }
 
 // Dimensions, type, spacing and placement; the data's layout is the caller's.
+// The directions must span space: no axis of length zero or not finite,
+// none (nearly) along another. Each is made unit length, as ITK reads them.
+void checkDirections(glm::dmat3& direction, const std::string& ctx) {
+    for (int c = 0; c < 3; ++c) {
+        const double length = glm::length(direction[c]);
+        if (!std::isfinite(length) || length < 1e-6)
+            throw InputError(ctx + ": TransformMatrix: axis " + std::to_string(c) +
+                             "'s direction has length " + detail::formatDouble(length) +
+                             " (each axis needs a direction)");
+        direction[c] /= length;
+    }
+    const double det = glm::determinant(direction);
+    if (std::abs(det) < 1e-3)
+        throw InputError(ctx + ": TransformMatrix is singular (determinant " +
+                         detail::formatDouble(det) +
+                         " once its axes are unit length): two axes point the same way");
+}
+
 Volume readGrid(const MetaHeader& h) {
     if (const auto object = h.get("objecttype"); object && toLower(*object) != "image")
         throw InputError(h.ctx + ": ObjectType '" + *object + "' is not an image");
@@ -153,6 +172,7 @@ Volume readGrid(const MetaHeader& h) {
         for (std::size_t c = 0; c < n; ++c) // axis c's direction: the c-th n numbers
             for (std::size_t r = 0; r < n; ++r)
                 v.direction[int(c)][int(r)] = m[c * n + r];
+        checkDirections(v.direction, h.ctx);
     }
     if (offset || matrix || h.get("anatomicalorientation")) v.space = Space::LPS;
     return v;

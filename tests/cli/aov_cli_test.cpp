@@ -70,7 +70,9 @@ TEST_F(CliTest, CompositingChannelsAreReadByOpenExrAndOpenImageIo) {
     ASSERT_EQ(z.size(), 24u * 20u);
     int finite = 0;
     for (std::size_t p = 0; p < z.size(); ++p) {
-        if (!std::isfinite(z[p])) EXPECT_EQ(label[p], 0.0f) << "nothing visible at " << p;
+        if (!std::isfinite(z[p])) {
+            EXPECT_EQ(label[p], 0.0f) << "nothing visible at " << p;
+        }
         EXPECT_TRUE(label[p] >= 0.0f && label[p] <= 3.0f) << label[p];
         finite += std::isfinite(z[p]);
     }

@@ -77,6 +77,35 @@ TEST(SceneLoad, NestingBombIsRejectedBeforeParsing) {
                            "each other)");
 }
 
+// A key written twice in one object is an error naming the pointer and both
+// places, at any depth; the same key in two objects, or in an array's
+// objects, is not (the control), nor is a key's text inside a string value.
+TEST(SceneLoad, AKeyWrittenTwiceIsAnErrorNamingBothPlaces) {
+    test::TempDir dir;
+    const fs::path twice = dir.write("twice.json", "{\"version\": 1,\n"
+                                                   " \"render\": {\"size\": [8, 8],\n"
+                                                   "   \"size\": [16, 16]}}");
+    EXPECT_EQ(loadError(twice), twice.string() +
+                                    ":3:4: /render/size: the key \"size\" is written twice in "
+                                    "one object (first at 2:13); a scene says each thing once");
+    const fs::path nested =
+        dir.write("nested.json", "{\"version\": 1, \"operators\": [{\"type\": \"peeler\"}, "
+                                 "{\"type\": \"peeler\", \"params\": {\"a/b\": 1, \"a/b\": 2}}]}");
+    const std::string message = loadError(nested);
+    EXPECT_NE(message.find(": /operators/1/params/a~1b: the key \"a/b\" is written twice"),
+              std::string::npos)
+        << message;
+    const fs::path fine =
+        dir.write("fine.json", "{\"version\": 1, \"volume\": {\"phantom\": \"head\"},\n"
+                               " \"render\": {\"size\": [8, 8]},\n"
+                               " \"camera\": {\"fov\": 30}, \"output\": {\"pattern\": \"size\"}}");
+    EXPECT_EQ(loadError(fine), "") << "control: each key once in its own object";
+    EXPECT_EQ(loadError(dir.write("top.json", "{\"version\": 1, \"version\": 1}")),
+              (dir.path() / "top.json").string() +
+                  ":1:16: /version: the key \"version\" is written twice in one object (first "
+                  "at 1:2); a scene says each thing once");
+}
+
 TEST(SceneLoad, EveryExampleSceneParses) {
     std::vector<fs::path> scenes;
     for (const auto& entry : fs::directory_iterator(kSourceDir / "scenes")) {

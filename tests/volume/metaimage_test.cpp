@@ -149,6 +149,16 @@ TEST_F(MetaImage, RefusalsNameTheFileAndTheField) {
     refused("huge.mha", mhaHeader("").replace(mhaHeader("").find("4 3 2"), 5, "4e5 4e5 4e5") + data,
             "volume too large");
     refused("missing.mhd", mhaHeader("", "absent.raw"), "absent.raw");
+    const auto withMatrix = [&](const std::string& matrix) {
+        std::string h = mhaHeader("");
+        return h.replace(h.find("0 1 0 -1 0 0 0 0 1"), 18, matrix) + data;
+    };
+    refused("singular.mha", withMatrix("1 0 0 1 0 0 0 0 1"), "TransformMatrix is singular");
+    refused("flat.mha", withMatrix("1 0 0 0 0 0 0 0 1"), "axis 1's direction has length 0");
+    // Control: a matrix of scaled axes is made unit length, not refused.
+    const Volume scaled = readVolume(writeFile("scaled.mha", withMatrix("0 2 0 -2 0 0 0 0 2")));
+    EXPECT_NEAR(scaled.direction[0][1], 1.0, 1e-12);
+    EXPECT_NEAR(scaled.direction[1][0], -1.0, 1e-12);
 }
 
 } // namespace
