@@ -5,12 +5,16 @@
 #include "scene/animation.hpp"
 #include "scene/json_reader.hpp"
 #include "scene/scene.hpp"
+#include "volume/dicom.hpp"
 #include "volume/volume.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <span>
 #include <string>
 #include <string_view>
+#include <unistd.h>
 
 namespace cutaway::fuzz {
 
@@ -33,6 +37,26 @@ void expectingInputErrors(F&& read) {
     } catch (const RuntimeError&) {
     }
 }
+
+/// A folder of this process's own under the temporary folder, removed at exit.
+class OwnFolder {
+public:
+    OwnFolder()
+        : m_path(std::filesystem::temp_directory_path() /
+                 ("cutaway-fuzz-" + std::to_string(::getpid()))) {
+        std::filesystem::create_directories(m_path);
+    }
+    ~OwnFolder() {
+        std::error_code ec;
+        std::filesystem::remove_all(m_path, ec);
+    }
+    OwnFolder(const OwnFolder&) = delete;
+    OwnFolder& operator=(const OwnFolder&) = delete;
+    const std::filesystem::path& path() const { return m_path; }
+
+private:
+    std::filesystem::path m_path;
+};
 
 } // namespace
 
@@ -74,6 +98,14 @@ void fuzzGltf(const std::uint8_t* data, std::size_t size) {
         const std::string_view bytes(reinterpret_cast<const char*>(data), size);
         mesh::loadGltfBytes(bytes, "fuzz.gltf", std::filesystem::path(CUTAWAY_FUZZ_MESH_DIR));
     });
+}
+
+void fuzzDicom(const std::uint8_t* data, std::size_t size) {
+    static const OwnFolder folder;
+    const std::filesystem::path file = folder.path() / "slice.dcm";
+    std::ofstream(file, std::ios::binary | std::ios::trunc)
+        .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+    expectingInputErrors([&] { valueRange(readDicom(file)); });
 }
 
 } // namespace cutaway::fuzz

@@ -33,4 +33,9 @@ void fuzzNhdr(const std::uint8_t* data, std::size_t size);
 /// from scenes/meshes/ (the example models).
 void fuzzGltf(const std::uint8_t* data, std::size_t size);
 
+/// The bytes of one DICOM file -> readDicom on it, alone in a folder of
+/// this process's own: GDCM parses in a child process, so its assertions
+/// must come back as an InputError naming the file.
+void fuzzDicom(const std::uint8_t* data, std::size_t size);
+
 } // namespace cutaway::fuzz

@@ -7,6 +7,8 @@ should change):
   fuzz/corpus/nrrd/   tiny hand-made NRRD files: every voxel type, both byte orders, raw and gzip
   fuzz/corpus/nifti/  tiny hand-made NIfTI-1 and NIfTI-2 files, .nii and .nii.gz
   fuzz/corpus/metaimage/  tiny hand-made MetaImage files (.mha): types, byte orders, zlib
+  fuzz/corpus/dicom/  tiny hand-made DICOM slices (explicit VR little endian): types, a
+                      rescale, an oblique one, pixel data short, a header cut short
   fuzz/corpus/nhdr/   detached NRRD headers naming the data files of fuzz/nhdr_data/
   fuzz/corpus/gltf/   the example scenes' tool models (scenes/meshes/)
   fuzz/nhdr_data/     the data files those headers name: raw, gzip, with lines to skip
@@ -252,6 +254,65 @@ def metaimage_dict() -> None:
     dictionary(ROOT / "fuzz" / "metaimage.dict", [k + " = " for k in keys] + values)
 
 
+def dicom_element(group: int, element: int, vr: str, value: bytes) -> bytes:
+    """One data element in explicit VR little endian, padded to an even length."""
+    if len(value) % 2:
+        value += b"\0" if vr in ("UI", "OB", "OW") else b" "
+    head = struct.pack("<HH", group, element) + vr.encode()
+    if vr in ("OB", "OW", "UN", "SQ", "UT"):
+        return head + b"\0\0" + struct.pack("<I", len(value)) + value
+    return head + struct.pack("<H", len(value)) + value
+
+
+def dicom(rows: int, cols: int, bits: int, signed: bool, pixels: bytes, *, z=0.0,
+          orientation="1\\0\\0\\0\\1\\0", spacing="0.5\\0.75", rescale=None) -> bytes:
+    """A CT slice as a scanner writes it, the least a reader needs."""
+    ct = b"1.2.840.10008.5.1.4.1.1.2"
+    meta = dicom_element(0x0002, 0x0010, "UI", b"1.2.840.10008.1.2.1")
+    meta = dicom_element(0x0002, 0x0000, "UL", struct.pack("<I", len(meta))) + meta
+    data = [
+        (0x0008, 0x0016, "UI", ct),
+        (0x0008, 0x0018, "UI", b"1.2.3.4.5.6.%d" % int(z * 10)),
+        (0x0008, 0x0060, "CS", b"CT"),
+        (0x0020, 0x000E, "UI", b"1.2.3.4.5"),
+        (0x0020, 0x0011, "IS", b"1"),
+        (0x0020, 0x0032, "DS", b"-10\\20\\%g" % z),
+        (0x0020, 0x0037, "DS", orientation.encode()),
+        (0x0028, 0x0002, "US", struct.pack("<H", 1)),
+        (0x0028, 0x0004, "CS", b"MONOCHROME2"),
+        (0x0028, 0x0010, "US", struct.pack("<H", rows)),
+        (0x0028, 0x0011, "US", struct.pack("<H", cols)),
+        (0x0028, 0x0030, "DS", spacing.encode()),
+        (0x0028, 0x0100, "US", struct.pack("<H", bits)),
+        (0x0028, 0x0101, "US", struct.pack("<H", bits)),
+        (0x0028, 0x0102, "US", struct.pack("<H", bits - 1)),
+        (0x0028, 0x0103, "US", struct.pack("<H", 1 if signed else 0)),
+    ]
+    if rescale:
+        data += [(0x0028, 0x1052, "DS", b"%g" % rescale[1]),
+                 (0x0028, 0x1053, "DS", b"%g" % rescale[0])]
+    data.append((0x7FE0, 0x0010, "OW" if bits > 8 else "OB", pixels))
+    body = b"".join(dicom_element(*d) for d in data)
+    return b"\0" * 128 + b"DICM" + meta + body
+
+
+def dicom_seeds() -> None:
+    out = fresh("dicom")
+    u8 = bytes(range(12))
+    i16 = struct.pack("<12h", *range(-1000, 1400, 200))
+    seeds = {
+        "uint8.dcm": dicom(3, 4, 8, False, u8),
+        "int16-rescale.dcm": dicom(3, 4, 16, True, i16, z=1.5, rescale=(1.0, -1024.0)),
+        "oblique.dcm": dicom(3, 4, 16, False, i16, orientation="0.8660254\\0.5\\0\\-0.5\\0.8660254\\0"),
+        "pixels-short.dcm": dicom(5, 4, 16, True, i16),
+        "spacing-nan.dcm": dicom(3, 4, 8, False, u8, spacing="nan\\nan"),
+        "header-cut.dcm": dicom(3, 4, 16, True, i16)[:200],
+        "preamble-only.dcm": b"\0" * 128 + b"DICM",
+    }
+    for name, data in seeds.items():
+        (out / name).write_bytes(data)
+
+
 def dictionary(path: Path, words) -> None:
     def quoted(word: str) -> str:  # libFuzzer's escapes: \\ \" \xAB
         return '"' + "".join(
@@ -320,6 +381,7 @@ if __name__ == "__main__":
     nrrd_seeds()
     nifti_seeds()
     metaimage_seeds()
+    dicom_seeds()
     nhdr_seeds()
     gltf_seeds()
     scene_dict()

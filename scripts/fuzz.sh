@@ -18,6 +18,7 @@ targets=(
   "metaimage 4096 fuzz/metaimage.dict"
   "nhdr 4096 fuzz/nhdr.dict"
   "gltf 65536 fuzz/gltf.dict"
+  "dicom 4096 -"
 )
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}

@@ -42,6 +42,7 @@ struct DicomSeries {
     std::string description; ///< SeriesDescription ("" when absent)
     std::string modality;    ///< Modality ("" when absent)
     glm::ivec3 dims{0};      ///< columns x rows x slices (files)
+    int bitsAllocated = 0;   ///< BitsAllocated of its first file (0 when absent)
     std::vector<std::filesystem::path> files;
 };
 

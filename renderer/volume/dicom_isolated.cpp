@@ -46,6 +46,7 @@ void put(Wire& w, const DicomListing& listing) {
             w.str(*text);
         for (int a = 0; a < 3; ++a)
             w.u64(std::uint64_t(std::int64_t(s.dims[a])));
+        w.u64(std::uint64_t(s.bitsAllocated));
         w.u64(s.files.size());
         for (const fs::path& f : s.files)
             w.str(f.string());
@@ -62,6 +63,7 @@ DicomListing takeListing(WireReader& r) {
             *text = r.str();
         for (int a = 0; a < 3; ++a)
             s.dims[a] = int(std::int64_t(r.u64()));
+        s.bitsAllocated = int(r.u64());
         s.files.resize(r.u64());
         for (fs::path& f : s.files)
             f = r.str();

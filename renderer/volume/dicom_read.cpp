@@ -8,9 +8,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <gdcmDataSet.h>
 #include <gdcmImage.h>
 #include <gdcmImageReader.h>
 #include <gdcmPixelFormat.h>
+#include <gdcmReader.h>
 #include <optional>
 
 namespace cutaway {
@@ -54,7 +56,91 @@ std::optional<VoxelType> voxelTypeOf(const gdcm::PixelFormat& pf) {
     }
 }
 
-Slice readSlice(const std::string& file) {
+const gdcm::Tag kPixelData(0x7fe0, 0x0010);
+const gdcm::Tag kPixelSpacing(0x0028, 0x0030);
+
+// An element's bytes as text ("" when absent or not a plain value).
+std::string elementText(const gdcm::DataSet& ds, const gdcm::Tag& tag) {
+    if (!ds.FindDataElement(tag)) return {};
+    const gdcm::ByteValue* bv = ds.GetDataElement(tag).GetByteValue();
+    return bv ? std::string(bv->GetPointer(), bv->GetLength()) : std::string();
+}
+
+// `text` quoted for a message: control characters escaped, cut at 64.
+std::string shown(const std::string& text) {
+    std::string out = "'";
+    for (char c : text.substr(0, 64)) {
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
+            out += hex;
+        } else {
+            out += c;
+        }
+    }
+    return out + (text.size() > 64 ? "...'" : "'");
+}
+
+// PixelSpacing as written, read here rather than through GDCM (which reads
+// uninitialised memory on "nan"): two finite numbers > 0, or refused. Empty
+// when the file has none (GDCM's spacing then stands).
+std::optional<glm::dvec2> pixelSpacing(const gdcm::DataSet& ds, const std::string& file) {
+    std::string text = elementText(ds, kPixelSpacing);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\0'))
+        text.pop_back();
+    if (text.empty()) return std::nullopt;
+    const std::size_t bar = text.find('\\');
+    double row = 0.0, column = 0.0;
+    const bool parsed =
+        bar != std::string::npos &&
+        detail::parseDouble(detail::trim(std::string_view(text).substr(0, bar)), row) &&
+        detail::parseDouble(detail::trim(std::string_view(text).substr(bar + 1)), column);
+    if (!parsed || !std::isfinite(row) || !std::isfinite(column) || row <= 0.0 || column <= 0.0)
+        throw InputError(file + ": PixelSpacing " + shown(text) +
+                         " is not two finite spacings > 0 (mm between rows, between columns)");
+    return glm::dvec2(column, row); // along a row (x) is the spacing between columns
+}
+
+// The bytes from where the file's pixel data begins to its end: GDCM keeps
+// the declared length of pixel data cut short, its missing end zeros.
+std::uint64_t pixelBytesInFile(const std::string& file) {
+    gdcm::Reader reader;
+    reader.SetFileName(file.c_str());
+    if (!reader.ReadUpToTag(kPixelData, {kPixelData})) return 0; // stops at its value
+    std::error_code ec;
+    const std::uint64_t size = fs::file_size(file, ec);
+    const std::uint64_t start = reader.GetStreamCurrentPosition();
+    return ec || start > size ? 0 : size - start;
+}
+
+// Refuses pixel data shorter than the image's rows and columns need, as
+// declared or as the file holds it: GDCM pads both with zeros. (Compressed
+// pixel data is checked by its decoder.)
+void checkPixelDataLength(const gdcm::DataSet& ds, std::size_t expected, const Slice& s) {
+    if (!ds.FindDataElement(kPixelData)) throw InputError(s.file + ": no pixel data");
+    const gdcm::ByteValue* bv = ds.GetDataElement(kPixelData).GetByteValue();
+    if (!bv) return;
+    const std::uint64_t held = std::min<std::uint64_t>(bv->GetLength(), pixelBytesInFile(s.file));
+    if (held >= expected) return;
+    throw InputError(s.file + ": its pixel data holds " + std::to_string(held) + " bytes where " +
+                     std::to_string(s.dims.x) + " x " + std::to_string(s.dims.y) + " pixels need " +
+                     std::to_string(expected) +
+                     " (cut short, or Rows and Columns say more than it holds)");
+}
+
+// The series' memory, from its first file's header, refused before any
+// slice is read when it is more than a volume may hold.
+void checkSeriesSize(const DicomSeries& series, const fs::path& path) {
+    const std::int64_t sizes[3] = {series.dims.x, series.dims.y, series.dims.z};
+    const int bytes = std::max(1, (series.bitsAllocated + 7) / 8);
+    const VoxelType like = bytes <= 1   ? VoxelType::U8
+                           : bytes == 2 ? VoxelType::U16
+                           : bytes <= 4 ? VoxelType::U32
+                                        : VoxelType::F64;
+    detail::checkedByteCount(sizes, like, path.string() + " (series " + series.uid + ")");
+}
+
+Slice readSlice(const std::string& file, const DicomSeries& series) {
     gdcm::ImageReader reader;
     reader.SetFileName(file.c_str());
     if (!reader.Read()) throw InputError(file + ": GDCM cannot read it as a DICOM image");
@@ -71,6 +157,10 @@ Slice readSlice(const std::string& file) {
     Slice s;
     s.file = file;
     s.dims = {int(image.GetDimension(0)), int(image.GetDimension(1))};
+    if (s.dims != glm::ivec2(series.dims))
+        throw InputError(file + ": " + std::to_string(s.dims.x) + " x " + std::to_string(s.dims.y) +
+                         " pixels, where its series' first file has " +
+                         std::to_string(series.dims.x) + " x " + std::to_string(series.dims.y));
     s.type = *type;
     const double* o = image.GetOrigin();
     const double* d = image.GetDirectionCosines();
@@ -79,10 +169,13 @@ Slice readSlice(const std::string& file) {
     s.row = {d[0], d[1], d[2]};
     s.column = {d[3], d[4], d[5]};
     s.spacing = {sp[0], sp[1]};
+    const gdcm::DataSet& ds = reader.GetFile().GetDataSet();
+    if (const auto written = pixelSpacing(ds, file)) s.spacing = *written;
     s.thickness = sp[2] > 0.0 ? sp[2] : 1.0;
     s.slope = image.GetSlope();
     s.inter = image.GetIntercept();
     const std::size_t expected = std::size_t(s.dims.x) * s.dims.y * voxelSize(s.type);
+    checkPixelDataLength(ds, expected, s);
     if (image.GetBufferLength() != expected)
         throw InputError(file + ": its pixel data holds " +
                          std::to_string(image.GetBufferLength()) + " bytes where " +
@@ -200,10 +293,11 @@ Volume readDicomHere(const fs::path& path, std::string_view selector,
                      const DicomProgress& progress) {
     const DicomListing listing = listDicomHere(path, progress);
     const DicomSeries& series = pickSeries(listing, selector, path);
+    checkSeriesSize(series, path);
     std::vector<Slice> slices;
     for (const fs::path& file : series.files) {
         if (progress) progress(file.string());
-        slices.push_back(readSlice(file.string()));
+        slices.push_back(readSlice(file.string(), series));
     }
     checkAlike(slices);
     const Slice& first = slices.front();

@@ -27,6 +27,7 @@ const gdcm::Tag kModality(0x0008, 0x0060);
 const gdcm::Tag kRows(0x0028, 0x0010);
 const gdcm::Tag kColumns(0x0028, 0x0011);
 const gdcm::Tag kSopClass(0x0008, 0x0016);
+const gdcm::Tag kBitsAllocated(0x0028, 0x0100);
 
 // A tag's value as the scanner gives it, without DICOM's padding.
 std::string valueOf(const gdcm::Scanner& scanner, const std::string& file, const gdcm::Tag& tag) {
@@ -41,15 +42,15 @@ std::string valueOf(const gdcm::Scanner& scanner, const std::string& file, const
 // The tags the listing reads of one file ("" where absent).
 struct FileTags {
     bool dicom = false; // GDCM read its header up to the tags
-    std::string uid, number, description, modality, rows, columns, sopClass;
+    std::string uid, number, description, modality, rows, columns, sopClass, bits;
 };
 
 // One file's tags, through GDCM's Scanner (a file at a time, so that a
 // crash inside GDCM is known to be this file's: the progress names it).
 FileTags scanFile(const std::string& file) {
     gdcm::Scanner scanner;
-    for (const gdcm::Tag& t :
-         {kSeriesUid, kSeriesNumber, kSeriesDescription, kModality, kRows, kColumns, kSopClass})
+    for (const gdcm::Tag& t : {kSeriesUid, kSeriesNumber, kSeriesDescription, kModality, kRows,
+                               kColumns, kSopClass, kBitsAllocated})
         scanner.AddTag(t);
     if (!scanner.Scan({file})) throw InputError(file + ": GDCM could not scan it for DICOM tags");
     FileTags t;
@@ -61,6 +62,7 @@ FileTags scanFile(const std::string& file) {
     t.rows = valueOf(scanner, file, kRows);
     t.columns = valueOf(scanner, file, kColumns);
     t.sopClass = valueOf(scanner, file, kSopClass);
+    t.bits = valueOf(scanner, file, kBitsAllocated);
     return t;
 }
 
@@ -187,6 +189,7 @@ DicomListing listDicomHere(const fs::path& path, const DicomProgress& progress) 
             s.description = tags.description;
             s.modality = tags.modality;
             s.dims = {parsedCount(tags.columns), parsedCount(tags.rows), 0};
+            s.bitsAllocated = parsedCount(tags.bits);
         }
         s.files.push_back(file);
         s.dims.z = int(s.files.size());

@@ -69,6 +69,9 @@ TEST(FuzzReplay, NhdrCorpus) {
 TEST(FuzzReplay, GltfCorpus) {
     EXPECT_GE(replay("corpus", "gltf", fuzz::fuzzGltf), 2u);
 }
+TEST(FuzzReplay, DicomCorpus) {
+    EXPECT_GE(replay("corpus", "dicom", fuzz::fuzzDicom), 7u);
+}
 TEST(FuzzReplay, SceneRegressions) {
     replay("regressions", "scene", fuzz::fuzzScene);
 }

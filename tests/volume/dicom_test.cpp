@@ -5,6 +5,7 @@
 #include "volume/dicom.hpp"
 #include "volume_test_util.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <numbers>
 
@@ -184,6 +185,72 @@ TEST_F(Dicom, AHeaderCutShortIsRefusedNotAnAbort) {
 
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     EXPECT_DEATH(detail::listDicomHere(stub), "") << "control: GDCM aborts on it in-process";
+}
+
+// Runs a pydicom edit of `file` (Python statements on the dataset `d`).
+void editDicom(const fs::path& file, const std::string& statements) {
+    const std::string command =
+        "/usr/bin/python3 -W ignore -c \"import pydicom; d = pydicom.dcmread('" + file.string() +
+        "'); " + statements + "; d.save_as('" + file.string() + "')\"";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+}
+
+// Pixel data shorter than Rows x Columns (GDCM pads it with zeros), or a
+// slice cut short inside its pixels, is refused naming the file; so is a
+// PixelSpacing that is not two finite spacings (GDCM reads uninitialised
+// memory on "nan"), however the folder is spelled. Controls: the untouched
+// series reads, and reads alike through a path spelled another way.
+TEST_F(Dicom, ShortPixelDataAndBadSpacingAreRefused) {
+    const fs::path rows = write("rows");
+    editDicom(rows / "slice0000.dcm", "d.Rows = d.Rows + 2");
+    std::string message = messageOf([&] { readDicom(rows); });
+    EXPECT_NE(message.find("slice0000.dcm: its pixel data holds 336 bytes where 14 x 14 pixels"),
+              std::string::npos)
+        << message;
+
+    const fs::path cut = write("cut");
+    fs::resize_file(cut / "slice0006.dcm", fs::file_size(cut / "slice0006.dcm") - 40);
+    message = messageOf([&] { readDicom(cut); });
+    EXPECT_NE(message.find("slice0006.dcm: its pixel data holds 296 bytes"), std::string::npos)
+        << message;
+
+    const fs::path nan = write("nan");
+    for (const auto& entry : fs::directory_iterator(nan))
+        editDicom(entry.path(), "d.PixelSpacing = ['nan', 'nan']");
+    for (const fs::path& spelled : {nan, fs::path(nan.string() + "/."), nan / "sub" / ".."}) {
+        SCOPED_TRACE(spelled.string());
+        if (spelled.filename() == "..") fs::create_directories(nan / "sub");
+        message = messageOf([&] { readDicom(spelled); });
+        EXPECT_NE(message.find("PixelSpacing 'nan\\nan' is not two finite spacings"),
+                  std::string::npos)
+            << message;
+    }
+    const fs::path fine = write("fine");
+    expectSameValues(readDicom(fs::path(fine.string() + "/.")), source());
+}
+
+// A file of a few hundred bytes whose header claims 40000 x 40000 pixels is
+// refused by its pixel data's length, before its pixels are allocated (3.2 GB
+// each, which took 11-25 s); a series
+// whose slices claim more than a volume may hold is refused before its
+// first slice is read.
+TEST_F(Dicom, SizesAreCheckedBeforeMemoryIsTaken) {
+    const fs::path folder = write("huge");
+    for (int k = 0; k < kDims.z; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "slice%04d.dcm", k);
+        editDicom(folder / name, "d.Rows = 40000; d.Columns = 40000");
+    }
+    const std::string series = messageOf([&] { readDicom(folder); });
+    EXPECT_NE(series.find("exceeds the limit of 2^31 voxels"), std::string::npos) << series;
+    fs::remove_all(folder);
+    fs::create_directories(folder);
+    fs::copy_file(write("one") / "slice0000.dcm", folder / "only.dcm");
+    editDicom(folder / "only.dcm", "d.Rows = 40000; d.Columns = 40000");
+    const std::string one = messageOf([&] { readDicom(folder); });
+    EXPECT_NE(one.find("only.dcm: its pixel data holds 336 bytes where 40000 x 40000"),
+              std::string::npos)
+        << one;
 }
 
 // Symbolic links: one to the folder's parent and one to the folder itself
