@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/process_memory.hpp"
 #include "gpu/context.hpp"
+#include "gpu/memory.hpp"
 #include "interrupt.hpp"
 #include "job/address_space.hpp"
 #include "job/export_volume.hpp"
@@ -27,7 +28,9 @@
 #include "progress.hpp"
 #include "scene/animation.hpp"
 #include "scene/scene.hpp"
+#include "volume/child_process.hpp"
 #include "volume/dicom.hpp"
+#include "volume/read_budget.hpp"
 #include "volume/volume.hpp"
 #include "volume_info.hpp"
 #include "watch.hpp"
@@ -347,6 +350,29 @@ CLI::App* addInfo(CLI::App& app, std::string& file, std::string& series) {
     return info;
 }
 
+// --read-budget and --verbose on every subcommand that reads a volume.
+void addReadOptions(std::initializer_list<CLI::App*> commands, std::string& budget, bool& verbose) {
+    for (CLI::App* command : commands) {
+        command->add_option("--read-budget", budget,
+                            "Host memory reading a volume may take, e.g. 8G; a volume that "
+                            "declares more is refused before it is read (default: half the "
+                            "machine's memory)");
+        command->add_flag("--verbose", verbose,
+                          "Also print the messages of the libraries that read the input "
+                          "(GDCM's, for DICOM), escaped");
+    }
+}
+
+// Sets the read budget `--read-budget` gave, if any.
+void applyReadBudget(const std::string& value) {
+    if (value.empty()) return;
+    try {
+        cutaway::setReadBudget(cutaway::gpu::parseMemorySize(value));
+    } catch (const cutaway::InputError& e) {
+        throw cutaway::InputError(std::string("--read-budget: ") + e.what());
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -367,6 +393,9 @@ int main(int argc, char** argv) {
     cutaway::cli::WatchArgs watchArgs;
     CLI::App* watch = cutaway::cli::addWatch(app, watchArgs);
     auto* devices = app.add_subcommand("devices", "List the Vulkan devices");
+    std::string readBudget;
+    bool verbose = false;
+    addReadOptions({render, validate, exportCommand, info, watch}, readBudget, verbose);
 
     try {
         app.parse(argc, argv);
@@ -376,6 +405,8 @@ int main(int argc, char** argv) {
     }
 
     try {
+        applyReadBudget(readBudget);
+        cutaway::detail::showChildMessages(verbose);
         if (render->parsed()) return runRender(renderArgs);
         if (validate->parsed()) return runValidate(validateArgs);
         if (exportCommand->parsed()) return runExport(exportArgs);

@@ -144,6 +144,7 @@ DeviceChoice chooseDevice(VkInstance instance, const std::string& wanted) {
     DeviceChoice best;
     int bestRank = -1;
     std::string report;
+    bool named = wanted.empty(); // some device's name matches --device
     for (VkPhysicalDevice device : devices) {
         VkPhysicalDeviceProperties props;
         vkGetPhysicalDeviceProperties(device, &props);
@@ -152,7 +153,7 @@ DeviceChoice chooseDevice(VkInstance instance, const std::string& wanted) {
         if (!wanted.empty() && lower(props.deviceName).find(lower(wanted)) == std::string::npos)
             reason = "name does not match --device \"" + wanted + "\"";
         else
-            reason = check(device, choice);
+            named = true, reason = check(device, choice);
         report += "\n  " + describeDevice(device) + ": " + (reason.empty() ? "usable" : reason);
         if (reason.empty() && typeRank(props.deviceType) > bestRank) {
             bestRank = typeRank(props.deviceType);
@@ -160,6 +161,10 @@ DeviceChoice chooseDevice(VkInstance instance, const std::string& wanted) {
             best = choice;
         }
     }
+    // A name that matches no device is a usage error (exit 2), as any bad argument.
+    if (!named)
+        throw InputError("--device \"" + wanted +
+                         "\" names no Vulkan device; devices found:" + report);
     if (best.device == VK_NULL_HANDLE)
         throw RuntimeError("no Vulkan device fits cutaway's needs; devices found:" + report);
     return best;

@@ -7,6 +7,7 @@
 #include "mesh/mesh.hpp"
 #include "operators/operator_geometry.hpp"
 #include "render/classify/label_classes.hpp"
+#include "render/frame.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -81,6 +82,7 @@ void SceneFileCheck::frame(const Scene& given) {
     const std::size_t filesIndex = filesOf(given);
     const Files& files = m_files[filesIndex];
     const Scene scene = inVolumeFrame(given, *files.scan); // LPS and RAS placed as a render does
+    render::checkSlicingPlanes(scene, *files.scan);
     if (!sequential(scene)) {
         // What each frame's render refuses before it draws: overlapping
         // operators, a segment without voxels (its scan and labels as read).

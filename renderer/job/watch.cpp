@@ -65,6 +65,7 @@ PreviewResult PreviewRenderer::render(const PreviewRequest& request) {
         const Scene scene = loadScene(request.scene, request.settings);
         const std::vector<RunInput> inputs = runInputs(scene);
         result.inputs = pathsOf(inputs);
+        m_known = result.inputs;
         std::vector<std::filesystem::path> read; // what the renderer's caches hold
         for (const RunInput& input : inputs)
             if (input.what != "the scene") read.push_back(input.path);
@@ -87,6 +88,12 @@ PreviewResult PreviewRenderer::render(const PreviewRequest& request) {
         result.written = true;
     } catch (const Error& e) {
         result.error = e.what();
+        // A scene refused for a missing file (a volume deleted, or written
+        // anew) is watched with what it read last, so the file's return
+        // renders again.
+        for (const std::filesystem::path& path : m_known)
+            if (std::find(result.inputs.begin(), result.inputs.end(), path) == result.inputs.end())
+                result.inputs.push_back(path);
     }
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

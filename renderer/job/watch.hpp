@@ -66,6 +66,9 @@ private:
     /// the scene itself) changed, as its caches know files by their names.
     std::unique_ptr<FrameRenderer> m_renderer;
     FileWatch m_inputs;
+    /// The files the last scene that could be read named: still watched
+    /// while the scene is refused (a deleted volume comes back).
+    std::vector<std::filesystem::path> m_known;
 };
 
 /// The preview's default path: SCENE's folder, its stem + "_preview.png".

@@ -21,7 +21,7 @@ CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width,
                              const Box* alsoInDepth) {
     CameraMatrices m;
     const double aspect = static_cast<double>(width) / static_cast<double>(height);
-    const double radius = std::max(bounds.radius(), 1e-6);
+    const double radius = std::max(bounds.radius(), 1e-12);
     const double fovY = glm::radians(camera.fovDeg);
     // The narrower of the two fields of view must hold the bounding sphere.
     const double fovX = 2.0 * std::atan(std::tan(fovY / 2.0) * aspect);
@@ -54,7 +54,9 @@ CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width,
         nearest = std::min(nearest, d - 1.05 * alsoInDepth->radius());
         farthest = std::max(farthest, d + 1.05 * alsoInDepth->radius());
     }
-    const double farPlane = std::max(farthest, 1.0);
+    // At least the volume's radius (not a fixed millimetre): a volume of
+    // nanometre voxels lies well within 1 mm of the eye.
+    const double farPlane = std::max(farthest, radius);
     if (m.perspective) {
         m.nearPlane = std::max(nearest, farPlane * 1e-3);
         m.proj = glm::perspective(fovY, aspect, m.nearPlane, farPlane);

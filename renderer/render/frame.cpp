@@ -47,18 +47,35 @@ void writeFrameInputs(const gpu::Context& ctx, VkDescriptorSet set, const FrameI
                                   in.storage[i], VK_IMAGE_LAYOUT_GENERAL);
 }
 
+Box slicedBounds(const Box& volumeBox, const std::vector<operators::WorldBox>& boxes) {
+    // An operator whose own box misses the volume moves nothing and holds nothing.
+    const operators::WorldBox volume{glm::dmat4(1.0), {volumeBox.lo, volumeBox.hi}};
+    Box bounds = volumeBox;
+    for (const operators::WorldBox& box : boxes) {
+        if (!operators::intersects(operators::WorldBox{box.localToWorld, {}}, volume)) continue;
+        bounds.lo = glm::min(bounds.lo, box.lo());
+        bounds.hi = glm::max(bounds.hi, box.hi());
+    }
+    return bounds;
+}
+
+void checkSlicingPlanes(const Scene& scene, const Volume& volume) {
+    std::vector<operators::WorldBox> boxes;
+    for (const OperatorSpec& spec : scene.operators)
+        boxes.push_back(operators::worldBox(spec));
+    const glm::dvec3 half = 0.5 * volume.extent();
+    const double voxelMm = std::min({volume.spacing.x, volume.spacing.y, volume.spacing.z});
+    checkPlaneCount(slicedBounds(Box{-half, half}, boxes), scene.render.sliceSpacing * voxelMm,
+                    scene.render.sliceSpacing, voxelMm);
+}
+
 FrameGeometry frameGeometry(const Scene& scene, const GpuVolume& volume,
                             const OperatorStack& operators, const std::optional<Box>& meshBounds) {
-    // An operator whose own box misses the volume moves nothing and holds nothing.
-    const operators::WorldBox volumeBox{glm::dmat4(1.0), {volume.box.lo, volume.box.hi}};
+    std::vector<operators::WorldBox> boxes;
+    for (const auto& op : operators.operators())
+        boxes.push_back(op->box);
     FrameGeometry g;
-    g.bounds = volume.box;
-    for (const auto& op : operators.operators()) {
-        if (!operators::intersects(operators::WorldBox{op->spec.localToWorld, {}}, volumeBox))
-            continue;
-        g.bounds.lo = glm::min(g.bounds.lo, op->box.lo());
-        g.bounds.hi = glm::max(g.bounds.hi, op->box.hi());
-    }
+    g.bounds = slicedBounds(volume.box, boxes);
     Box inDepth = g.bounds;
     if (meshBounds) {
         inDepth.lo = glm::min(inDepth.lo, meshBounds->lo);

@@ -54,6 +54,16 @@ struct FrameGeometry {
     int marginVoxels = 0; ///< slabMargin of that reach, for empty space
 };
 
+/// The box the slicing planes span: `volumeBox` and each of `boxes` (the
+/// operators' deformed boxes) that meets it (a flap may leave the volume's box).
+Box slicedBounds(const Box& volumeBox, const std::vector<operators::WorldBox>& boxes);
+
+/// What frameGeometry refuses before anything is drawn, from the scene and
+/// the volume as read (centred, as a render places it): more slicing planes
+/// than are drawn (checkPlaneCount). `validate` calls it, so that it refuses
+/// what `render` does.
+void checkSlicingPlanes(const Scene& scene, const Volume& volume);
+
 /// The camera frames the volume alone, so that an operator moving through a
 /// sequence does not move the camera; its depth range covers the operators'
 /// boxes and `meshBounds` too.

@@ -1,6 +1,7 @@
 #include "scene/label_table.hpp"
 
 #include "core/error.hpp"
+#include "core/quote_text.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -30,6 +31,7 @@ struct Line {
     std::int64_t id = 0;
     std::string name;
     std::optional<glm::ivec3> rgb;
+    bool colorOutOfRange = false; // three whole numbers, not all in [0, 255]
 };
 
 // `id r g b a visible mesh "name"` (ITK-SNAP).
@@ -60,9 +62,12 @@ std::optional<Line> plainLine(const std::string& text) {
     if (w.size() < 2 || !integer(w[0], 0, 2147483647, l.id)) return std::nullopt;
     l.name = w[1];
     std::int64_t c[3] = {};
-    if (w.size() >= 5 && integer(w[2], 0, 255, c[0]) && integer(w[3], 0, 255, c[1]) &&
-        integer(w[4], 0, 255, c[2]))
-        l.rgb = glm::ivec3(int(c[0]), int(c[1]), int(c[2]));
+    constexpr std::int64_t kAny = std::int64_t{1} << 40;
+    if (w.size() >= 5 && integer(w[2], -kAny, kAny, c[0]) && integer(w[3], -kAny, kAny, c[1]) &&
+        integer(w[4], -kAny, kAny, c[2])) {
+        l.colorOutOfRange = std::any_of(c, c + 3, [](std::int64_t v) { return v < 0 || v > 255; });
+        l.rgb = glm::ivec3(int(c[0] & 0xff), int(c[1] & 0xff), int(c[2] & 0xff));
+    }
     return l;
 }
 
@@ -77,6 +82,8 @@ LabelTable readLabelTable(const std::filesystem::path& path) {
                          " bytes; at most 16 MiB");
     std::ifstream in(path);
     LabelTable table;
+    std::map<std::int64_t, int> idLines;
+    std::map<std::string, int> nameLines;
     std::string text;
     for (int number = 1; std::getline(in, text); ++number) {
         if (const std::size_t first = text.find_first_not_of(" \t");
@@ -92,6 +99,16 @@ LabelTable readLabelTable(const std::filesystem::path& path) {
             throw InputError(path.string() + ":" + std::to_string(number) +
                              ": not a label line (expected \"id name [r g b [a]]\" or ITK-SNAP's "
                              "\"id r g b a visible mesh \\\"name\\\"\")");
+        const std::string at = path.string() + ":" + std::to_string(number) + ": ";
+        if (line->colorOutOfRange)
+            throw InputError(at + "a colour outside [0, 255] for label " +
+                             std::to_string(line->id));
+        if (const auto [seen, fresh] = idLines.emplace(line->id, number); !fresh)
+            throw InputError(at + "label " + std::to_string(line->id) + " again (first on line " +
+                             std::to_string(seen->second) + "); each id is named once");
+        if (const auto [seen, fresh] = nameLines.emplace(line->name, number); !fresh)
+            throw InputError(at + "the name " + quoteText(line->name) + " again (first on line " +
+                             std::to_string(seen->second) + "); each name is one label's");
         table.names.emplace(line->name, line->id);
         if (line->rgb)
             table.colors[line->id] = glm::vec3(

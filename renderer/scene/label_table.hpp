@@ -18,7 +18,7 @@
 namespace cutaway {
 
 struct LabelTable {
-    std::map<std::string, std::int64_t> names; ///< name -> id (the first line of a name wins)
+    std::map<std::string, std::int64_t> names; ///< name -> id (each name once)
     /// id -> linear RGB: the table's bytes are sRGB (as atlases and viewers
     /// show them), decoded, so a PNG shows the table's own bytes.
     std::map<std::int64_t, glm::vec3> colors;
@@ -26,7 +26,8 @@ struct LabelTable {
 
 /// Reads a table; throws InputError naming the file and the line of a line
 /// that is neither form, an id outside [0, 2^31 - 1] or a colour outside
-/// [0, 255], and a file of more than 16 MiB or with no label.
+/// [0, 255], an id or a name a line before gave, and a file of more than
+/// 16 MiB or with no label.
 LabelTable readLabelTable(const std::filesystem::path& path);
 
 } // namespace cutaway

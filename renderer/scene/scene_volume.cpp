@@ -61,7 +61,7 @@ RawLayout parseRaw(JsonReader& reader) {
     for (const VoxelTypeName& entry : kVoxelTypes) {
         if (type && *type == entry.name) raw.type = entry.type;
     }
-    raw.spacing = reader.vec3("spacing", raw.spacing, Range::openClosed(0.0, 1.0e4));
+    raw.spacing = reader.vec3("spacing", raw.spacing, Range::closed(1e-9, 1.0e4));
     raw.bigEndian = reader.string("endian", "little", {"little", "big"}) == "big";
     raw.offset = static_cast<std::uint64_t>(
         reader.integer("offset", 0, 0, std::numeric_limits<std::int64_t>::max()));
@@ -167,7 +167,7 @@ void parseVolume(JsonReader& reader, VolumeSource& volume, const std::filesystem
         reader.object("raw", [&](JsonReader& raw) { volume.raw = parseRaw(raw); });
     }
 
-    volume.spacing = reader.vec3("spacing", Range::openClosed(0.0, 1.0e4));
+    volume.spacing = reader.vec3("spacing", Range::closed(1e-9, 1.0e4));
     if (const auto window = reader.numbers("window", 2, 2, Range::closed(-kMaxValue, kMaxValue))) {
         if ((*window)[0] < (*window)[1]) {
             volume.window = std::array<double, 2>{(*window)[0], (*window)[1]};

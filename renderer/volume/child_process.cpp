@@ -1,9 +1,12 @@
 #include "volume/child_process.hpp"
 
 #include "core/error.hpp"
+#include "core/quote_text.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <sys/mman.h>
 #include <sys/resource.h>
@@ -56,30 +59,38 @@ int waitFor(pid_t child) {
     return status;
 }
 
-// The last non-empty line of what the child wrote to `fd` (its stderr, a
-// memory file), its control characters escaped, at most 200 characters.
-std::string lastLine(int fd) {
+std::atomic<bool> g_showMessages{false};
+
+// What the child wrote to `fd` (its stderr, a memory file): its first MiB.
+std::string messagesIn(int fd) {
     std::string text;
     char buffer[4096];
     ::lseek(fd, 0, SEEK_SET);
-    for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;)
+    for (ssize_t n; text.size() < (1u << 20) && (n = ::read(fd, buffer, sizeof buffer)) > 0;)
         text.append(buffer, std::size_t(n));
+    return text;
+}
+
+// The last non-empty line of `text`, escaped, at most 200 characters.
+std::string lastLine(std::string text) {
     while (!text.empty() && (text.back() == '\n' || text.back() == ' '))
         text.pop_back();
     text =
         text.substr(text.find_last_of('\n') == std::string::npos ? 0 : text.find_last_of('\n') + 1);
-    std::string line;
-    for (char c : text) {
-        if (line.size() >= 200) return line + "...";
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
-            line += hex;
-        } else {
-            line += c;
-        }
+    return escapeText(text, 200);
+}
+
+// Each non-empty line of `text` on stderr, escaped, after `library`'s name.
+void show(const std::string& text, const char* library) {
+    std::size_t start = 0;
+    while (start < text.size()) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        if (end > start)
+            std::fprintf(
+                stderr, "cutaway: %s: %s\n", library,
+                escapeText(std::string_view(text).substr(start, end - start), 500).c_str());
+        start = end + 1;
     }
-    return line;
 }
 
 } // namespace
@@ -115,8 +126,12 @@ void runChildWork(int fd, const std::function<void(ChildChannel&)>& work) {
     ::_exit(0);
 }
 
+void showChildMessages(bool on) {
+    g_showMessages = on;
+}
+
 std::vector<std::byte> runInChild(const std::function<void(ChildChannel&)>& work,
-                                  const ChildDied& died) {
+                                  const ChildDied& died, const char* library) {
     int fds[2];
     if (::pipe(fds) != 0) throw RuntimeError(std::string("pipe: ") + std::strerror(errno));
     const int messages = ::memfd_create("cutaway-child-stderr", MFD_CLOEXEC);
@@ -154,8 +169,10 @@ std::vector<std::byte> runInChild(const std::function<void(ChildChannel&)>& work
     }
     ::close(fds[0]);
     const int status = waitFor(child);
-    const std::string said = lastLine(messages);
+    const std::string text = messagesIn(messages);
     ::close(messages);
+    if (g_showMessages) show(text, library);
+    const std::string said = lastLine(text);
     if (outcome == kResult && WIFEXITED(status) && WEXITSTATUS(status) == 0) return result;
     if (outcome == kInputError) throw InputError(message);
     if (outcome == kOtherError) throw RuntimeError(message);

@@ -37,11 +37,16 @@ private:
 /// throws InputError from `died(last progress, signal number or 0, the last
 /// line the child wrote to stderr)`, when the signal is one a damaged input
 /// causes (SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL), else RuntimeError. The
-/// child's stderr (the library's own messages) is kept from the terminal;
-/// it writes no core file and runs no exit handlers.
+/// child's stderr (the messages of `library`, its name) is kept from the
+/// terminal unless showChildMessages is on; the child writes no core file
+/// and runs no exit handlers.
 using ChildDied = std::function<std::string(const std::string&, int, const std::string&)>;
 std::vector<std::byte> runInChild(const std::function<void(ChildChannel&)>& work,
-                                  const ChildDied& died);
+                                  const ChildDied& died, const char* library);
+
+/// Whether runInChild prints what its children wrote to stderr, each line
+/// escaped, after "cutaway: LIBRARY: " (`--verbose`). Off by default.
+void showChildMessages(bool on);
 
 /// Bytes written field by field, and read back in the same order: the
 /// child's results. Reading past the end throws RuntimeError.

@@ -36,7 +36,8 @@ inChild(const fs::path& path,
         },
         [&](const std::string& file, int signal, const std::string& said) {
             return diedReading(path, file, signal, said);
-        });
+        },
+        "GDCM");
 }
 
 void put(Wire& w, const DicomListing& listing) {

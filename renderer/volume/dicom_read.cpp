@@ -2,6 +2,7 @@
 // ImageReader (whatever transfer syntax Debian's GDCM decodes), the slices
 // checked to form one regular grid and stacked along their normal.
 #include "core/error.hpp"
+#include "core/quote_text.hpp"
 #include "volume/dicom.hpp"
 #include "volume/io_util.hpp"
 
@@ -66,21 +67,6 @@ std::string elementText(const gdcm::DataSet& ds, const gdcm::Tag& tag) {
     return bv ? std::string(bv->GetPointer(), bv->GetLength()) : std::string();
 }
 
-// `text` quoted for a message: control characters escaped, cut at 64.
-std::string shown(const std::string& text) {
-    std::string out = "'";
-    for (char c : text.substr(0, 64)) {
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
-            char hex[8];
-            std::snprintf(hex, sizeof hex, "\\x%02x", static_cast<unsigned char>(c));
-            out += hex;
-        } else {
-            out += c;
-        }
-    }
-    return out + (text.size() > 64 ? "...'" : "'");
-}
-
 // PixelSpacing as written, read here rather than through GDCM (which reads
 // uninitialised memory on "nan"): two finite numbers > 0, or refused. Empty
 // when the file has none (GDCM's spacing then stands).
@@ -96,7 +82,7 @@ std::optional<glm::dvec2> pixelSpacing(const gdcm::DataSet& ds, const std::strin
         detail::parseDouble(detail::trim(std::string_view(text).substr(0, bar)), row) &&
         detail::parseDouble(detail::trim(std::string_view(text).substr(bar + 1)), column);
     if (!parsed || !std::isfinite(row) || !std::isfinite(column) || row <= 0.0 || column <= 0.0)
-        throw InputError(file + ": PixelSpacing " + shown(text) +
+        throw InputError(file + ": PixelSpacing " + quoteText(text, 64) +
                          " is not two finite spacings > 0 (mm between rows, between columns)");
     return glm::dvec2(column, row); // along a row (x) is the spacing between columns
 }

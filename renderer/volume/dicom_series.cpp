@@ -2,6 +2,7 @@
 // SeriesInstanceUID through GDCM's Scanner (it reads each file's header up to
 // the tags asked for), and picking one.
 #include "core/error.hpp"
+#include "core/quote_text.hpp"
 #include "volume/dicom.hpp"
 #include "volume/io_util.hpp"
 
@@ -210,12 +211,15 @@ DicomListing listDicomHere(const fs::path& path, const DicomProgress& progress) 
 
 std::string describeSeries(const DicomListing& listing) {
     std::ostringstream out;
+    // The tags as the files wrote them, escaped: a file cannot put a
+    // terminal escape sequence on the screen.
     for (const DicomSeries& s : listing.series) {
-        out << "  series " << (s.number.empty() ? "-" : s.number) << "  "
-            << (s.description.empty() ? "(no description)" : "\"" + s.description + "\"")
-            << (s.modality.empty() ? "" : "  " + s.modality) << "  " << s.dims.x << " x "
-            << s.dims.y << " x " << s.dims.z << "  " << s.files.size() << " file(s)  uid " << s.uid
-            << "\n";
+        out << "  series " << (s.number.empty() ? "-" : escapeText(s.number)) << "  "
+            << (s.description.empty() ? "(no description)"
+                                      : "\"" + escapeText(s.description) + "\"")
+            << (s.modality.empty() ? "" : "  " + escapeText(s.modality)) << "  " << s.dims.x
+            << " x " << s.dims.y << " x " << s.dims.z << "  " << s.files.size() << " file(s)  uid "
+            << escapeText(s.uid) << "\n";
     }
     if (listing.ignored > 0)
         out << "  (" << listing.ignored << " other file(s) passed over: not DICOM images)\n";
@@ -236,7 +240,7 @@ const DicomSeries& pickSeries(const DicomListing& listing, std::string_view sele
     std::string why = wanted.empty() ? "holds " + std::to_string(listing.series.size()) +
                                            " series; pick one with /volume/series (its number, "
                                            "UID or description)"
-                      : hits.empty() ? "no series matches \"" + wanted + "\""
+                      : hits.empty() ? "no series matches \"" + escapeText(wanted) + "\""
                                      : std::to_string(hits.size()) + " series match \"" + wanted +
                                            "\"; give the UID";
     throw InputError(path.string() + ": " + why + ":\n" + describeSeries(listing));

@@ -9,8 +9,8 @@ namespace cutaway::detail {
 
 namespace {
 
-constexpr std::size_t kInputChunk = std::size_t{1} << 18;  // 256 KiB of compressed input
-constexpr std::size_t kFirstBuffer = std::size_t{1} << 26; // 64 MiB before growing
+constexpr std::size_t kInputChunk = std::size_t{1} << 18; // 256 KiB of compressed input
+constexpr std::size_t kReadChunk = std::size_t{1} << 20;  // readUpTo's chunk
 
 std::string zlibMessage(const z_stream& stream, int code) {
     if (stream.msg != nullptr) return stream.msg;
@@ -98,18 +98,14 @@ std::uint64_t GzipReader::skip(std::uint64_t size) {
 
 std::vector<std::byte> readUpTo(GzipReader& reader, std::size_t size) {
     std::vector<std::byte> data;
-    std::size_t filled = 0;
-    while (filled < size) {
-        // Grow geometrically, capped at the declared size: memory follows the data
-        // actually present rather than what the header claims.
-        const std::size_t target =
-            std::min(size, std::max(kFirstBuffer, data.size() + data.size() / 2));
-        data.resize(target);
-        const std::size_t got = reader.read(data.data() + filled, target - filled);
-        filled += got;
-        if (filled < target) break;
+    data.reserve(size); // mapped, not touched: pages come as they are written
+    std::vector<std::byte> chunk(std::min<std::size_t>(size, kReadChunk));
+    while (data.size() < size) {
+        const std::size_t got =
+            reader.read(chunk.data(), std::min(chunk.size(), size - data.size()));
+        data.insert(data.end(), chunk.begin(), chunk.begin() + std::ptrdiff_t(got));
+        if (got == 0) break;
     }
-    data.resize(filled);
     return data;
 }
 

@@ -44,8 +44,11 @@ private:
     std::uint64_t m_position = 0;
 };
 
-/// Reads up to `size` decompressed bytes, growing the buffer as data arrives
-/// (so a header that declares 8 GiB over a tiny stream allocates little).
+/// Reads up to `size` decompressed bytes into one buffer, reserved once at
+/// `size` (the caller has checked it against the read budget) and filled a
+/// chunk at a time: it never grows by copying, and its pages are touched
+/// only as data arrives (a header that declares 8 GiB over a tiny stream
+/// makes little resident). Peak: `size` plus a 1 MiB chunk.
 std::vector<std::byte> readUpTo(GzipReader& reader, std::size_t size);
 
 /// Writes `size` bytes as a gzip stream. Throws RuntimeError naming `context`

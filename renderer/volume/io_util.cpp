@@ -1,6 +1,7 @@
 #include "volume/io_util.hpp"
 
 #include "core/error.hpp"
+#include "volume/read_budget.hpp"
 
 #include <cctype>
 #include <charconv>
@@ -46,6 +47,15 @@ std::size_t checkedByteCount(const std::int64_t sizes[3], VoxelType type,
         throw InputError(prefix(context) + "volume too large: " + std::to_string(bytes) +
                          " bytes of voxel data exceeds the limit of 8 GiB");
     }
+    if (bytes > readBudget()) {
+        throw InputError(prefix(context) + "its " + std::to_string(sizes[0]) + "x" +
+                         std::to_string(sizes[1]) + "x" + std::to_string(sizes[2]) + " " +
+                         std::string(voxelTypeName(type)) + " voxels need " +
+                         std::to_string(bytes >> 20) + " MiB, more than the " +
+                         std::to_string(readBudget() >> 20) +
+                         " MiB reading may take (--read-budget; by default half the machine's "
+                         "memory)");
+    }
     return static_cast<std::size_t>(bytes);
 }
 
@@ -54,6 +64,12 @@ void checkSpacing(double spacing, int axis, std::string_view context) {
     if (!std::isfinite(spacing) || spacing <= 0.0) {
         throw InputError(prefix(context) + "spacing along " + kAxis[axis] + " is " +
                          formatDouble(spacing) + " (spacing must be finite and > 0)");
+    }
+    if (spacing < kMinSpacing || spacing > kMaxSpacing) {
+        throw InputError(prefix(context) + "spacing along " + kAxis[axis] + " is " +
+                         formatDouble(spacing) +
+                         " mm, outside the 1e-9 to 1e9 mm cutaway "
+                         "renders (a nanometre is 1e-6 mm)");
     }
 }
 

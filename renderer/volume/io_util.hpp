@@ -20,11 +20,19 @@ namespace cutaway::detail {
 constexpr std::uint64_t kMaxVoxels = std::uint64_t{1} << 31;
 constexpr std::uint64_t kMaxBytes = std::uint64_t{8} << 30;
 
-/// Checks declared sizes (each >= 1, within the limits above) and returns the
-/// byte count of the voxel data. Throws InputError naming `context`.
+/// Checks declared sizes (each >= 1, within the limits above and the read
+/// budget, volume/read_budget.hpp) and returns the byte count of the voxel
+/// data. Throws InputError naming `context`.
 std::size_t checkedByteCount(const std::int64_t sizes[3], VoxelType type, std::string_view context);
 
-/// Spacing must be finite and > 0; `axis` is 0, 1, 2 for x, y, z.
+/// Voxel spacings cutaway renders, in mm: from a picometre to a thousand
+/// kilometres, far beyond electron microscopy (nanometres) and astronomy's
+/// grids in any unit a file names as mm.
+constexpr double kMinSpacing = 1e-9;
+constexpr double kMaxSpacing = 1e9;
+
+/// Spacing must be finite and within [kMinSpacing, kMaxSpacing]; `axis` is
+/// 0, 1, 2 for x, y, z.
 void checkSpacing(double spacing, int axis, std::string_view context);
 
 /// A read-only, seekable stream buffer over bytes in memory (not copied: they
@@ -52,6 +60,7 @@ bool parseDouble(std::string_view text, double& value);
 std::string formatDouble(double value);
 
 std::string toLower(std::string_view text);
+
 std::string_view trim(std::string_view text);
 
 } // namespace cutaway::detail

@@ -7,6 +7,7 @@
 // LPS space. Refused, with a message: ASCII data, several channels, more
 // dimensions, and data split over several files (LIST, patterns).
 #include "core/error.hpp"
+#include "core/quote_text.hpp"
 #include "io/input_file.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/io_util.hpp"
@@ -43,22 +44,36 @@ struct MetaHeader {
     }
 };
 
+// Reads one line (without its newline) into `line`, taking its bytes from
+// `budget` as they are read: a line that never ends stops at the budget, not
+// at the end of a 20 GB file. False at the end of the input.
+bool boundedLine(std::istream& in, std::string& line, std::size_t& budget, const std::string& ctx) {
+    line.clear();
+    std::streambuf* buffer = in.rdbuf();
+    bool any = false;
+    for (int c; (c = buffer->sbumpc()) != std::char_traits<char>::eof();) {
+        any = true;
+        if (budget-- == 0)
+            throw InputError(ctx + ": no ElementDataFile within the first 64 KiB of the header");
+        if (c == '\n') break;
+        line.push_back(static_cast<char>(c));
+    }
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return any;
+}
+
 // The header's lines up to and including ElementDataFile.
 MetaHeader readHeader(std::istream& in, const std::string& ctx) {
     MetaHeader h;
     h.ctx = ctx;
     std::string line;
-    std::size_t read = 0;
-    while (std::getline(in, line)) {
-        read += line.size() + 1;
-        if (read > kMaxHeader)
-            throw InputError(ctx + ": no ElementDataFile within the first 64 KiB of the header");
-        if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::size_t budget = kMaxHeader;
+    while (boundedLine(in, line, budget, ctx)) {
         if (trim(line).empty()) continue;
         const std::size_t eq = line.find('=');
         if (eq == std::string::npos)
-            throw InputError(ctx + ": not a MetaImage header line (no '='): '" +
-                             std::string(trim(line.substr(0, 80))) + "'");
+            throw InputError(ctx +
+                             ": not a MetaImage header line (no '='): " + quoteText(trim(line)));
         const std::string key = toLower(trim(line.substr(0, eq)));
         h.fields[key] = std::string(trim(line.substr(eq + 1)));
         if (key == "elementdatafile") return h;
@@ -74,7 +89,8 @@ std::vector<double> numbers(const MetaHeader& h, const char* key, const std::str
     while (words >> word) {
         double v = 0.0;
         if (!detail::parseDouble(word, v) || !std::isfinite(v))
-            throw InputError(h.ctx + ": " + key + ": '" + word + "' is not a finite number");
+            throw InputError(h.ctx + ": " + key + ": " + quoteText(word) +
+                             " is not a finite number");
         out.push_back(v);
     }
     if (out.size() != count)
@@ -89,7 +105,7 @@ bool flag(const MetaHeader& h, const char* key, bool otherwise) {
     const std::string t = toLower(*v);
     if (t == "true" || t == "1") return true;
     if (t == "false" || t == "0") return false;
-    throw InputError(h.ctx + ": " + key + ": expected True or False, got '" + *v + "'");
+    throw InputError(h.ctx + ": " + key + ": expected True or False, got " + quoteText(*v));
 }
 
 VoxelType elementType(const MetaHeader& h) {
@@ -102,8 +118,8 @@ VoxelType elementType(const MetaHeader& h) {
         {"MET_FLOAT", VoxelType::F32},  {"MET_DOUBLE", VoxelType::F64}};
     const auto it = kTypes.find(*t);
     if (it == kTypes.end())
-        throw InputError(h.ctx + ": ElementType '" + *t +
-                         "' is not read (MET_UCHAR, MET_CHAR, MET_USHORT, MET_SHORT, MET_UINT, "
+        throw InputError(h.ctx + ": ElementType " + quoteText(*t) +
+                         " is not read (MET_UCHAR, MET_CHAR, MET_USHORT, MET_SHORT, MET_UINT, "
                          "MET_INT, MET_FLOAT, MET_DOUBLE)");
     return it->second;
 }
@@ -186,7 +202,7 @@ Volume readMetaImageStream(std::istream& in, std::uint64_t fileSize, const std::
     const bool bigEndian = flag(h, "binarydatabyteordermsb", flag(h, "elementbyteordermsb", false));
     std::int64_t skip = 0;
     if (const auto s = h.get("headersize"); s && (!detail::parseInt(*s, skip) || skip < -1))
-        throw InputError(ctx + ": HeaderSize: expected a byte count or -1, got '" + *s + "'");
+        throw InputError(ctx + ": HeaderSize: expected a byte count or -1, got " + quoteText(*s));
     if (skip == -1 && compressed)
         throw InputError(ctx + ": HeaderSize -1 is only valid with uncompressed data");
     const std::string name = *h.get("elementdatafile");

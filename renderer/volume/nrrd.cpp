@@ -4,6 +4,7 @@
 // Geometry from `space` (or `space dimension`), `space directions` and `space
 // origin`, anatomical spaces converted to LPS (volume.hpp); else `spacings`.
 #include "core/error.hpp"
+#include "core/quote_text.hpp"
 #include "io/input_file.hpp"
 #include "volume/byte_order.hpp"
 #include "volume/gzip.hpp"
@@ -32,7 +33,7 @@ using detail::trim;
 std::int64_t parseIntField(const std::string& text, const char* field, const std::string& ctx) {
     std::int64_t value = 0;
     if (!detail::parseInt(trim(text), value)) {
-        throw InputError(ctx + ": field '" + field + "' is not an integer: '" + text + "'");
+        throw InputError(ctx + ": field '" + field + "' is not an integer: " + quoteText(text));
     }
     return value;
 }
@@ -118,7 +119,7 @@ NrrdSpace parseSpace(const detail::NrrdFields& f, const std::string& ctx) {
         const std::int64_t n = parseIntField(*f.spaceDimension, "space dimension", ctx);
         if (f.space && n != static_cast<std::int64_t>(out.dimension)) {
             throw InputError(ctx + ": 'space dimension' " + std::to_string(n) +
-                             " contradicts space '" + std::string(trim(*f.space)) + "'");
+                             " contradicts space " + quoteText(trim(*f.space)));
         }
         if (n != 3 && !f.space) {
             throw InputError(ctx + ": space dimension " + std::to_string(n) +
@@ -282,7 +283,7 @@ NrrdEncoding readEncoding(const detail::NrrdFields& f, const std::string& ctx) {
         if (endian == "big")
             e.bigEndian = true;
         else if (endian != "little")
-            throw InputError(ctx + ": unknown endian '" + *f.endian + "'");
+            throw InputError(ctx + ": unknown endian " + quoteText(*f.endian));
     }
     const std::string encoding = toLower(trim(required(f.encoding, "encoding", ctx)));
     e.gzip = encoding == "gzip" || encoding == "gz";

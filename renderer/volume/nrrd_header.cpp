@@ -3,6 +3,7 @@
 #include "volume/nrrd_header.hpp"
 
 #include "core/error.hpp"
+#include "core/quote_text.hpp"
 #include "volume/io_util.hpp"
 
 #include <cctype>
@@ -104,7 +105,7 @@ VoxelType parseNrrdType(std::string_view text, const std::string& ctx) {
                              "' (cutaway reads 8, 16 and 32-bit integers, float and double)");
         }
     }
-    throw InputError(ctx + ": unknown type '" + std::string(text) + "'");
+    throw InputError(ctx + ": unknown type " + quoteText(text));
 }
 
 /// Parses "(a,b,c)" vectors and "none" entries of `space directions` / `space origin`.
@@ -148,8 +149,8 @@ NrrdFields readNrrdHeader(std::istream& in, const std::string& ctx, bool& endedB
         throw InputError(ctx + ": empty file, not a NRRD file");
     const std::string_view magic = trim(line);
     if (magic.size() != 8 || magic.substr(0, 7) != "NRRD000" || magic[7] < '1' || magic[7] > '5') {
-        throw InputError(ctx + ": not a NRRD file (expected the magic NRRD0001..NRRD0005, found '" +
-                         std::string(magic.substr(0, 16)) + "')");
+        throw InputError(ctx + ": not a NRRD file (expected the magic NRRD0001..NRRD0005, found " +
+                         quoteText(magic, 16) + ")");
     }
     NrrdFields f;
     endedByBlankLine = false;
@@ -164,7 +165,7 @@ NrrdFields readNrrdHeader(std::istream& in, const std::string& ctx, bool& endedB
         const std::size_t colon = line.find(':');
         if (colon == std::string::npos) {
             throw InputError(ctx + ": line " + std::to_string(lineNumber) +
-                             ": expected 'field: value', found '" + line.substr(0, 80) + "'");
+                             ": expected 'field: value', found " + quoteText(line));
         }
         if (colon + 1 < line.size() && line[colon + 1] == '=') {
             // key:=value pairs are free-form; cutaway's writer keeps a NIfTI-style

@@ -51,11 +51,13 @@ CW_FUNC float sobelWeight(int a, int b) {
 }
 
 // `delta` = the smoothed differences (v[x+1] - v[x-1], ...), neighbours
-// clamped to the grid. Returns (direction, magnitude); zero for a flat region.
+// clamped to the grid. Returns (direction, magnitude); zero for a flat region,
+// told in values per voxel (not per mm), so that a volume of nanometre or
+// kilometre voxels is lit as the same volume in millimetres.
 CW_FUNC vec4 encodeGradient(vec3 delta, GradientParams p) {
+    if (length(delta) < 1e-8f) return vec4(0.0f);
     vec3 g = delta * p.halfInvSpacing;
     float len = length(g);
-    if (len < 1e-8f) return vec4(0.0f);
     return vec4(g / len, min(len * p.magnitudeScale, 1.0f));
 }
 

@@ -95,11 +95,41 @@ TEST_F(CliTest, HelpExitsZero) {
     }
 }
 
-TEST_F(CliTest, UnknownDeviceIsARuntimeErrorThatListsDevices) {
+// A voxel spacing beyond what renders (1e300 mm, 1e-12 mm), or one that puts
+// more slicing planes across the volume than are drawn (1e-6 mm beside 1 mm),
+// is refused by validate as by render, with the same message and exit 2
+// (validate passed both); the control, nanometre voxels all round, passes.
+TEST_F(CliTest, ValidateRefusesTheSpacingsRenderRefuses) {
+    const std::string voxels(64, '\x40');
+    for (const char* spacings : {"1e300 1 1", "1e-12 1 1", "1e-6 1 1", "1e-6 1e-6 1e-6"}) {
+        const std::string spacing = spacings;
+        SCOPED_TRACE(spacing);
+        write("v.nrrd", std::string("NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\n") +
+                            "spacings: " + spacing + "\nencoding: raw\n\n" + voxels);
+        const fs::path scene = write("s.json", R"({"version": 1, "volume": {"file": "v.nrrd"},
+            "render": {"size": [16, 16]}, "output": {"pattern": "o_####.exr"}})");
+        const CommandResult v = run("validate " + scene.string());
+        const CommandResult r = run("render " + scene.string());
+        const bool refused = spacing != "1e-6 1e-6 1e-6";
+        EXPECT_EQ(v.code, refused ? 2 : 0) << v.output;
+        EXPECT_EQ(r.code, refused ? 2 : 0) << r.output;
+        if (!refused) continue;
+        const std::string why =
+            spacing == "1e-6 1 1" ? "planes across the" : " mm, outside the 1e-9 to 1e9 mm";
+        for (const CommandResult* c : {&v, &r})
+            EXPECT_NE(c->output.find(why), std::string::npos) << c->output;
+        EXPECT_FALSE(fs::exists(m_dir / "o_0000.exr"));
+    }
+}
+
+// A --device that names no device is a usage error (exit 2) listing them.
+TEST_F(CliTest, UnknownDeviceIsAUsageErrorThatListsDevices) {
     const fs::path scene = write("scene.json", kSmallScene);
     CommandResult r = run("render " + scene.string() + " --device no-such-gpu");
-    EXPECT_EQ(r.code, 1) << r.output;
-    EXPECT_NE(r.output.find("no Vulkan device fits"), std::string::npos) << r.output;
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("--device \"no-such-gpu\" names no Vulkan device"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("name does not match"), std::string::npos) << r.output;
     EXPECT_FALSE(fs::exists(m_dir / "frames"));
 }
 

@@ -99,6 +99,13 @@ TEST_F(DicomCli, ACutSliceIsAnErrorAndLinksDoNotLoop) {
             << r.output;
     }
     EXPECT_FALSE(fs::exists(m_dir / "f_0.exr")) << "nothing is written";
+    // GDCM's own messages: hidden, shown escaped after "cutaway: GDCM: "
+    // with --verbose.
+    EXPECT_EQ(runCutaway("info " + folder.string()).output.find("cutaway: GDCM: "),
+              std::string::npos);
+    const CommandResult verbose = runCutaway("info --verbose " + folder.string());
+    EXPECT_EQ(verbose.code, 2);
+    EXPECT_NE(verbose.output.find("cutaway: GDCM: "), std::string::npos) << verbose.output;
 
     const fs::path loops = series("loops", "");
     fs::create_directory_symlink("..", loops / "up");

@@ -52,9 +52,13 @@ TEST_F(CliTest, HostileVolumeFilesExitTwoNamingThemAndWriteNothing) {
         {"negative.nii", nifti([](NiftiHeader& h) { h.dims[2] = -4; }), "dim[2] is -4"},
         {"header-size.nii", nifti([](NiftiHeader& h) { h.sizeofHdr = 400; }), "sizeof_hdr"},
         {"datatype.nii", nifti([](NiftiHeader& h) { h.datatype = 1792; }), "datatype 1792"},
-        // Valid, but a voxel 1e-30 mm thin across a 4 mm volume would need
-        // 10^31 slicing planes: the frame never ended before.
-        {"thin.nii", nifti([](NiftiHeader& h) { h.pixdim[1] = 1e-30f; }), "/render/slice_spacing"},
+        // A voxel 1e-30 mm thin across a 4 mm volume would need 10^31
+        // slicing planes (the frame never ended once): below what renders.
+        {"thin.nii", nifti([](NiftiHeader& h) { h.pixdim[1] = 1e-30f; }),
+         "outside the 1e-9 to 1e9 mm"},
+        // Within that range, but 1e-8 mm beside 1 mm: more planes than drawn.
+        {"thin-planes.nii", nifti([](NiftiHeader& h) { h.pixdim[1] = 1e-8f; }),
+         "/render/slice_spacing"},
     };
     for (const Hostile& c : cases) {
         SCOPED_TRACE(c.name);

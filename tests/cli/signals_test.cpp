@@ -26,13 +26,18 @@ namespace cutaway::test {
 namespace {
 
 // A turntable of `frames` frames of a small phantom at `pixels`^2.
-std::string spinningHead(int frames, int pixels, const std::string& extra = "") {
+// `animation`: the animation section in place of the spin (a key is
+// written once in a scene).
+std::string spinningHead(int frames, int pixels, const std::string& extra = "",
+                         const std::string& animation = "") {
+    const std::string spin = R"({ "frames": [0, )" + std::to_string(frames - 1) +
+                             R"(], "tracks": [ { "target": "/camera/orbit/azimuth",
+        "keys": [ { "frame": 0, "value": 0 }, { "frame": 100, "value": 360 } ] } ] })";
     return R"({ "version": 1, "volume": { "phantom": "head", "size": [16, 16, 16] },
       "render": { "size": [)" +
            std::to_string(pixels) + "," + std::to_string(pixels) + R"(] },
-      "animation": { "frames": [0, )" +
-           std::to_string(frames - 1) + R"(], "tracks": [ { "target": "/camera/orbit/azimuth",
-        "keys": [ { "frame": 0, "value": 0 }, { "frame": 100, "value": 360 } ] } ] },
+      "animation": )" +
+           (animation.empty() ? spin : animation) + R"(,
       "output": { "pattern": "frames/t_####.exr" })" +
            extra + "}";
 }
@@ -122,7 +127,7 @@ TEST_F(CliTest, AClosedPipeNeitherEndsTheRunNorHidesItsFailures) {
     // Frames 2 and 3 fail (the field of view leaves its range): exit 2 still.
     fs::remove_all(m_dir / "frames");
     const fs::path failing =
-        write("fov.json", spinningHead(4, 16, R"(, "camera": { "fov": 100 }, "animation": {
+        write("fov.json", spinningHead(4, 16, R"(, "camera": { "fov": 100 })", R"({
             "frames": [0, 3], "tracks": [ { "target": "/camera/fov", "keys": [
             { "frame": 0, "value": 100 }, { "frame": 3, "value": 220 } ] } ] })"));
     EXPECT_EQ(runWithClosedOutput({"render", failing.string()}), 2);

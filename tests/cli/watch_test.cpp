@@ -115,6 +115,22 @@ TEST_F(Watch, ARewrittenVolumeFileGivesANewPreview) {
     EXPECT_NE(contentOf(m_dir / "p.png"), first) << "the new volume shows";
 }
 
+// The volume deleted, then written again: the watch reports the missing
+// file, and renders once it is back (it watched the scene alone before).
+TEST_F(Watch, ADeletedVolumeThatComesBackGivesANewPreview) {
+    writeNrrd(m_dir / "v.nrrd", makePhantom("head", {20, 20, 20}).values);
+    edit(R"({"version": 1, "volume": {"file": "v.nrrd"}, "render": {"size": [24, 24]}})");
+    start();
+    ASSERT_TRUE(waitFor([&] { return count("updated in") == 1; })) << contentOf(m_dir / "log.txt");
+    const std::string first = contentOf(m_dir / "p.png");
+    fs::remove(m_dir / "v.nrrd");
+    ASSERT_TRUE(waitFor([&] { return count("waiting for the next change") == 1; }))
+        << contentOf(m_dir / "log.txt");
+    writeNrrd(m_dir / "v.nrrd", makePhantom("orange", {20, 20, 20}).values);
+    ASSERT_TRUE(waitFor([&] { return count("updated in") == 2; })) << contentOf(m_dir / "log.txt");
+    EXPECT_NE(contentOf(m_dir / "p.png"), first) << "the volume that came back shows";
+}
+
 TEST_F(CliTest, WatchRefusesAPreviewThatIsNotAPng) {
     const fs::path s = write("scene.json", R"({"version": 1, "volume": {"phantom": "head"}})");
     CommandResult r = runCutaway("watch " + s.string() + " -o " + (m_dir / "p.exr").string());

@@ -80,6 +80,29 @@ TEST(LabelTable, ALineOfNeitherFormIsAnErrorNamingItsLine) {
     EXPECT_NE(message.find("bad.txt:2: not a label line"), std::string::npos) << message;
 }
 
+// A colour outside [0, 255], an id named twice and a name given to two ids
+// are errors naming the line (they were dropped or taken silently); the
+// control: the same table with each fixed reads.
+TEST(LabelTable, BadColoursAndRepeatedIdsOrNamesAreErrors) {
+    TempDir dir;
+    const auto messageOf = [&](const std::string& text) {
+        try {
+            readLabelTable(dir.write("t.txt", text));
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    std::string m = messageOf("0 background 0 0 0\n17 hippocampus 300 0 0\n");
+    EXPECT_NE(m.find("t.txt:2: a colour outside [0, 255] for label 17"), std::string::npos) << m;
+    m = messageOf("0 background\n17 hippocampus\n17 amygdala\n");
+    EXPECT_NE(m.find("t.txt:3: label 17 again (first on line 2)"), std::string::npos) << m;
+    m = messageOf("0 background\n17 hippocampus\n18 hippocampus\n");
+    EXPECT_NE(m.find("t.txt:3: the name 'hippocampus' again (first on line 2)"), std::string::npos)
+        << m;
+    EXPECT_EQ(messageOf("0 background 0 0 0\n17 hippocampus 255 0 0\n18 amygdala\n"), "(no error)");
+}
+
 // The table's names work where names do; "color": "table" makes one
 // transfer function per label, the points' opacities in its colour.
 TEST(LabelTable, ASceneTakesItsNamesAndColours) {

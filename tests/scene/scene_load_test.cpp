@@ -255,6 +255,8 @@ const std::map<std::string, std::string> kBadScenes = {
     {"62-color-table-without-table.json",
      ": /transfer/labels/0/color: \"table\" needs a /labels/table"},
     {"63-label-table-bad-line.json", "tables/bad_line.txt:3: not a label line"},
+    {"66-output-aov-unknown.json", "/output/aovs/1: expected"},
+    {"67-key-written-twice.json", ":2:33: /render/size: the key \"size\" is written twice"},
     {"59-series-without-dicom.json",
      ": /volume/series: only allowed with a DICOM file, folder or DICOMDIR as \"file\""},
 };

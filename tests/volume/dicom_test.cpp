@@ -229,6 +229,16 @@ TEST_F(Dicom, ShortPixelDataAndBadSpacingAreRefused) {
     expectSameValues(readDicom(fs::path(fine.string() + "/.")), source());
 }
 
+// A SeriesDescription holding a terminal escape sequence is listed escaped.
+TEST_F(Dicom, TagsAreListedEscaped) {
+    const fs::path folder = write("ct");
+    for (const auto& entry : fs::directory_iterator(folder))
+        editDicom(entry.path(), "d.SeriesDescription = chr(27) + ']0;owned' + chr(7)");
+    const std::string listed = describeSeries(listDicom(folder));
+    EXPECT_EQ(listed.find('\x1b'), std::string::npos) << listed;
+    EXPECT_NE(listed.find("\"\\x1b]0;owned\\x07\""), std::string::npos) << listed;
+}
+
 // A file of a few hundred bytes whose header claims 40000 x 40000 pixels is
 // refused by its pixel data's length, before its pixels are allocated (3.2 GB
 // each, which took 11-25 s); a series

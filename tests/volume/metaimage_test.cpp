@@ -161,5 +161,39 @@ TEST_F(MetaImage, RefusalsNameTheFileAndTheField) {
     EXPECT_NEAR(scaled.direction[1][0], -1.0, 1e-12);
 }
 
+// Bytes this process has read through read() so far (/proc/self/io).
+std::uint64_t bytesRead() {
+    std::ifstream io("/proc/self/io");
+    std::string key;
+    std::uint64_t value = 0;
+    while (io >> key >> value)
+        if (key == "rchar:") return value;
+    return 0;
+}
+
+// A header line that never ends (a 256 MiB sparse file of "NDims = 3" and
+// zeros) is refused having read the header's 64 KiB, not the file: the
+// line was read whole before the cap was checked (20 GB: 4 GB of memory).
+TEST_F(MetaImage, AHeaderLineThatNeverEndsIsRefusedAtTheCap) {
+    const auto path = writeFile("endless.mha", "NDims = 3 ");
+    std::filesystem::resize_file(path, std::uint64_t{256} << 20);
+    const std::uint64_t before = bytesRead();
+    const std::string message = inputError([&] { readVolume(path); });
+    const std::uint64_t read = bytesRead() - before;
+    EXPECT_NE(message.find("no ElementDataFile within the first 64 KiB"), std::string::npos)
+        << message;
+    EXPECT_LT(read, std::uint64_t{4} << 20) << "bytes read of a 256 MiB file";
+    EXPECT_GT(read, std::uint64_t{64} << 10) << "control: the header's cap was read";
+}
+
+// Text a header quotes in a message has its control characters escaped, so
+// a file cannot put a terminal escape sequence on the screen.
+TEST_F(MetaImage, QuotedHeaderTextIsEscaped) {
+    const auto path = writeFile("escape.mha", "NDims = 3\n\x1b]0;owned\x07 no equals sign\n");
+    const std::string message = inputError([&] { readVolume(path); });
+    EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
+    EXPECT_NE(message.find("'\\x1b]0;owned\\x07 no equals sign'"), std::string::npos) << message;
+}
+
 } // namespace
 } // namespace cutaway::test
