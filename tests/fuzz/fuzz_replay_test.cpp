@@ -72,14 +72,25 @@ TEST(FuzzReplay, GltfCorpus) {
 TEST(FuzzReplay, DicomCorpus) {
     EXPECT_GE(replay("corpus", "dicom", fuzz::fuzzDicom), 7u);
 }
+// Each replay counts what it replayed: a missing or emptied folder fails.
 TEST(FuzzReplay, SceneRegressions) {
-    replay("regressions", "scene", fuzz::fuzzScene);
+    EXPECT_GE(replay("regressions", "scene", fuzz::fuzzScene), 10u);
 }
 TEST(FuzzReplay, NrrdRegressions) {
-    replay("regressions", "nrrd", fuzz::fuzzNrrd);
+    EXPECT_GE(replay("regressions", "nrrd", fuzz::fuzzNrrd), 1u);
 }
 TEST(FuzzReplay, NiftiRegressions) {
-    replay("regressions", "nifti", fuzz::fuzzNifti);
+    EXPECT_GE(replay("regressions", "nifti", fuzz::fuzzNifti), 1u);
+}
+TEST(FuzzReplay, MetaImageRegressions) {
+    EXPECT_GE(replay("regressions", "metaimage", fuzz::fuzzMetaImage), 2u);
+}
+TEST(FuzzReplay, DicomRegressions) {
+    EXPECT_GE(replay("regressions", "dicom", fuzz::fuzzDicom), 2u);
+}
+TEST(FuzzReplay, AMissingFolderReplaysNothing) {
+    EXPECT_EQ(replay("regressions", "no-such-target", fuzz::fuzzScene), 0u)
+        << "control: the counts above can fail";
 }
 TEST(FuzzReplay, NhdrRegressions) {
     EXPECT_GE(replay("regressions", "nhdr", fuzz::fuzzNhdr), 3u);
