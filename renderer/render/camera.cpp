@@ -1,8 +1,10 @@
 #include "render/camera.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <optional>
 
 namespace cutaway::render {
 
@@ -16,6 +18,44 @@ glm::dvec3 orbitDirection(double azimuthDeg, double elevationDeg, glm::dvec3 up)
     const double az = glm::radians(azimuthDeg), el = glm::radians(elevationDeg);
     return std::cos(el) * std::sin(az) * e1 - std::cos(el) * std::cos(az) * e2 + std::sin(el) * w;
 }
+
+namespace {
+
+// The corners of `box` seen from a camera looking along -toEye with `up` at
+// `target`: x right, y up, z towards the eye (a view's axes, about the target).
+std::array<glm::dvec3, 8> cornersSeen(const Box& box, glm::dvec3 target, glm::dvec3 toEye,
+                                      glm::dvec3 up) {
+    const glm::dmat4 view = glm::lookAt(target + toEye, target, up);
+    std::array<glm::dvec3, 8> corners;
+    for (int i = 0; i < 8; ++i) {
+        const glm::dvec3 p((i & 1) ? box.hi.x : box.lo.x, (i & 2) ? box.hi.y : box.lo.y,
+                           (i & 4) ? box.hi.z : box.lo.z);
+        corners[std::size_t(i)] = glm::dvec3(view * glm::dvec4(p, 1.0)) + glm::dvec3(0, 0, 1);
+    }
+    return corners;
+}
+
+// The distance from the target at which every corner lies inside the
+// frame, `margin` of its width and height kept free on each side: a corner
+// (x, y, z) at depth D - z needs |x| <= kx (D - z) and |y| <= ky (D - z).
+double tightDistance(const std::array<glm::dvec3, 8>& corners, double tanX, double tanY,
+                     double margin) {
+    const double kx = (1.0 - 2.0 * margin) * tanX, ky = (1.0 - 2.0 * margin) * tanY;
+    double distance = 0.0;
+    for (const glm::dvec3& c : corners)
+        distance = std::max({distance, c.z + std::abs(c.x) / kx, c.z + std::abs(c.y) / ky});
+    return distance;
+}
+
+// The orthographic height that holds every corner, `margin` kept free.
+double tightHeight(const std::array<glm::dvec3, 8>& corners, double aspect, double margin) {
+    double height = 0.0;
+    for (const glm::dvec3& c : corners)
+        height = std::max({height, 2.0 * std::abs(c.y), 2.0 * std::abs(c.x) / aspect});
+    return height / (1.0 - 2.0 * margin);
+}
+
+} // namespace
 
 CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width, int height,
                              const Box* alsoInDepth) {
@@ -32,12 +72,18 @@ CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width,
     const glm::dvec3 target = camera.target;
     const glm::dvec3 up = toVolume * camera.up;
     glm::dvec3 eye = camera.eye;
+    std::optional<std::array<glm::dvec3, 8>> seen; // with a margin: the corners as seen
     if (camera.useOrbit) {
-        double distance = camera.distance > 0.0 ? camera.distance : fitDistance;
-        if (camera.projection == Projection::Orthographic && camera.distance <= 0.0)
-            distance = 3.0 * radius;
         glm::dvec3 toEye = orbitDirection(camera.azimuthDeg, camera.elevationDeg, camera.up);
         if (toVolume != glm::dmat3(1.0)) toEye = glm::normalize(toVolume * toEye);
+        if (camera.margin) seen = cornersSeen(bounds, target, toEye, up);
+        double distance = camera.distance > 0.0 ? camera.distance : fitDistance;
+        if (camera.distance <= 0.0 && seen)
+            distance =
+                tightDistance(*seen, std::tan(fovX / 2.0), std::tan(fovY / 2.0), *camera.margin);
+        if (camera.distance <= 0.0) distance /= camera.zoom;
+        if (camera.projection == Projection::Orthographic && camera.distance <= 0.0)
+            distance = 3.0 * radius;
         eye = target + distance * toEye;
     }
     m.perspective = camera.projection == Projection::Perspective;
@@ -62,8 +108,9 @@ CameraMatrices computeCamera(const Camera& camera, const Box& bounds, int width,
         m.proj = glm::perspective(fovY, aspect, m.nearPlane, farPlane);
     } else {
         m.nearPlane = nearest; // may be negative: ortho sees behind the eye
-        const double h = camera.orthoHeight > 0.0 ? camera.orthoHeight
-                                                  : 2.0 * radius * std::max(1.0, 1.0 / aspect);
+        const double fitted = seen ? tightHeight(*seen, aspect, *camera.margin)
+                                   : 2.0 * radius * std::max(1.0, 1.0 / aspect);
+        const double h = camera.orthoHeight > 0.0 ? camera.orthoHeight : fitted / camera.zoom;
         const double w = h * aspect;
         m.proj = glm::ortho(-w / 2, w / 2, -h / 2, h / 2, m.nearPlane, farPlane);
     }

@@ -108,6 +108,11 @@ struct Camera {
     /// until job/volume_frame.hpp places a camera given in LPS or RAS.
     glm::dmat3 directionsToVolume{1.0};
     CameraFit fit = CameraFit::Volume;
+    /// /camera/margin: a fitted view frames the fit's box itself (its
+    /// corners as seen), keeping this fraction of the frame's width and
+    /// height free on each side; none: the box's bounding sphere, as before.
+    std::optional<double> margin;
+    double zoom = 1.0; ///< /camera/zoom: a factor on a fitted view
     /// With CameraFit::Sequence, the bounds (lo, hi in the volume frame) of
     /// what the operators move over the animation, set by the renderer of
     /// the sequence (job/render_job.cpp); none: the frame's own.

@@ -102,6 +102,22 @@ std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key
     return direction;
 }
 
+/// /camera/margin and /camera/zoom, which act on a fitted view only: an orbit
+/// whose distance (perspective) or ortho_height (orthographic) is left to fit.
+void parseFraming(JsonReader& reader, Camera& camera) {
+    if (reader.has("margin"))
+        camera.margin = reader.number("margin", 0.0, Range::closed(0.0, 0.45));
+    camera.zoom = reader.number("zoom", camera.zoom, Range::closed(0.01, 100.0));
+    const bool fitted = camera.useOrbit &&
+                        (camera.projection == Projection::Orthographic ? camera.orthoHeight <= 0.0
+                                                                       : camera.distance <= 0.0);
+    for (const char* key : {"margin", "zoom"})
+        if (reader.has(key) && !fitted)
+            reader.diagnostics().error(reader.pointerOf(key),
+                                       "acts on a fitted view: an orbit without a distance "
+                                       "(perspective) or ortho_height (orthographic)");
+}
+
 /// /camera: how the volume is viewed. At most one of `orbit` or `look_at`;
 /// without either, an orbit with its defaults.
 ///
@@ -115,6 +131,9 @@ std::optional<glm::dvec3> readDirection(JsonReader& reader, std::string_view key
 ///                  distance (or ortho_height) of 0 fits in view: the volume's
 ///                  box; with what the frame's operators move; with what they
 ///                  move over the whole animation (the view stays still)
+///  * margin        number in [0, 0.45], default none: a fitted view frames the
+///                  box itself, this fraction of the frame kept free on each side
+///  * zoom          number in [0.01, 100], default 1: a factor on a fitted view
 ///  * orbit         object, default {}: see parseOrbit above
 ///  * look_at       object, default none: see parseLookAt above
 void parseCamera(JsonReader& reader, Camera& camera) {
@@ -134,6 +153,7 @@ void parseCamera(JsonReader& reader, Camera& camera) {
     }
     reader.object("orbit", [&](JsonReader& orbit) { parseOrbit(orbit, camera); });
     reader.object("look_at", [&](JsonReader& lookAt) { parseLookAt(lookAt, camera); });
+    parseFraming(reader, camera);
 }
 
 /// /lights: the lighting of shaded samples (see /render/shading).

@@ -255,6 +255,8 @@ const std::map<std::string, std::string> kBadScenes = {
     {"62-color-table-without-table.json",
      ": /transfer/labels/0/color: \"table\" needs a /labels/table"},
     {"63-label-table-bad-line.json", "tables/bad_line.txt:3: not a label line"},
+    {"64-camera-margin-too-wide.json", "/camera/margin: expected a number in [0, 0.45]"},
+    {"65-camera-zoom-with-look-at.json", "/camera/zoom: acts on a fitted view"},
     {"66-output-aov-unknown.json", "/output/aovs/1: expected"},
     {"67-key-written-twice.json", ":2:33: /render/size: the key \"size\" is written twice"},
     {"59-series-without-dicom.json",

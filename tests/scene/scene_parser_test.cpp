@@ -247,8 +247,8 @@ TEST(SceneParser, UnknownKeysSuggestTheClosestKnownKey) {
               "scene.json: /rendr: unknown key (did you mean \"render\"?)");
     EXPECT_EQ(parseError(patched(R"({"render": {"shading": {"shinyness": 3}}})")),
               "scene.json: /render/shading/shinyness: unknown key (did you mean \"shininess\"?)");
-    EXPECT_EQ(parseError(patched(R"({"camera": {"zoom": 2}})")),
-              "scene.json: /camera/zoom: unknown key");
+    EXPECT_EQ(parseError(patched(R"({"camera": {"wobble": 2}})")),
+              "scene.json: /camera/wobble: unknown key");
     EXPECT_EQ(parseError(patched(R"({"volume": {"phantom": "hed"}})")),
               "scene.json: /volume/phantom: expected one of \"head\", \"orange\" (did you mean "
               "\"head\"?), got \"hed\"");
