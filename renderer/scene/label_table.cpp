@@ -71,7 +71,19 @@ std::optional<Line> plainLine(const std::string& text) {
     return l;
 }
 
+// Kelly's colours as sRGB bytes, in his order (white and black left out).
+constexpr unsigned kKelly[kPaletteColours] = {0xF3C300, 0x875692, 0xF38400, 0xA1CAF1, 0xBE0032,
+                                              0xC2B280, 0x848482, 0x008856, 0xE68FAC, 0x0067A5,
+                                              0xF99379, 0x604E97, 0xF6A600, 0xB3446C, 0xDCD300,
+                                              0x882D17, 0x8DB600, 0x654522, 0xE25822, 0x2B3D26};
+
 } // namespace
+
+glm::vec3 paletteColour(std::size_t index) {
+    const unsigned c = kKelly[index % kPaletteColours];
+    return {srgbToLinear(int(c >> 16)), srgbToLinear(int((c >> 8) & 0xff)),
+            srgbToLinear(int(c & 0xff))};
+}
 
 LabelTable readLabelTable(const std::filesystem::path& path) {
     std::error_code ec;

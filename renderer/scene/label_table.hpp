@@ -24,6 +24,12 @@ struct LabelTable {
     std::map<std::int64_t, glm::vec3> colors;
 };
 
+/// The palette of "color": "auto": Kelly's twenty-two colours of maximum
+/// contrast (1965) without white and black, 20 colours, as linear RGB;
+/// `index` cycles through them.
+glm::vec3 paletteColour(std::size_t index);
+inline constexpr std::size_t kPaletteColours = 20;
+
 /// Reads a table; throws InputError naming the file and the line of a line
 /// that is neither form, an id outside [0, 2^31 - 1] or a colour outside
 /// [0, 255], an id or a name a line before gave, and a file of more than

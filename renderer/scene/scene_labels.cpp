@@ -4,6 +4,7 @@
 #include "scene/label_table.hpp"
 #include "scene/scene_sections.hpp"
 
+#include <algorithm>
 #include <fnmatch.h>
 #include <system_error>
 
@@ -200,12 +201,28 @@ void addTableColoured(JsonReader& entry, const LabelTransfer& set,
     }
 }
 
+/// "color": "auto": one transfer function per label of `set`, its points'
+/// opacities in a colour of paletteColour, by the label's rank among the
+/// set's ids (ascending): distinct for up to 20 labels, the same on every run.
+void addAutoColoured(const LabelTransfer& set, std::vector<LabelTransfer>& transfers) {
+    std::vector<std::int64_t> ids = set.ids;
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        LabelTransfer one{{ids[i]}, set.transfer};
+        for (TransferPoint& p : one.transfer.points)
+            p.color = paletteColour(i);
+        transfers.push_back(std::move(one));
+    }
+}
+
 /// /transfer/labels: an array of objects, each a transfer function for some labels.
 ///
 ///  * labels  array of label names or ids, required
 ///  * points  array of at least 2 control points, as /transfer/points, required
-///  * color   "table", default none: each label in its /labels/table colour
-///            (the points' opacities; their colours are not used)
+///  * color   "table" or "auto", default none: each label in its /labels/table
+///            colour, or in a colour of a categorical palette (addAutoColoured);
+///            the points' opacities, their colours not used
 ///
 /// A sample is classified by the transfer function of its voxel's label
 /// (nearest voxel); labels not listed use /transfer/points. A label listed
@@ -216,8 +233,11 @@ void parseLabelTransfers(JsonReader& reader, std::vector<LabelTransfer>& transfe
         LabelTransfer result;
         if (const auto ids = readLabelList(entry, "labels", labels, true)) result.ids = *ids;
         parseTransfer(entry, result.transfer);
-        if (entry.has("color") && entry.string("color", {"table"}))
+        const std::string color = entry.string("color", {"table", "auto"}).value_or("");
+        if (color == "table")
             addTableColoured(entry, result, labels, transfers);
+        else if (color == "auto")
+            addAutoColoured(result, transfers);
         else
             transfers.push_back(std::move(result));
     });

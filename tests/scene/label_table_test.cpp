@@ -103,6 +103,42 @@ TEST(LabelTable, BadColoursAndRepeatedIdsOrNamesAreErrors) {
     EXPECT_EQ(messageOf("0 background 0 0 0\n17 hippocampus 255 0 0\n18 amygdala\n"), "(no error)");
 }
 
+// "color": "auto": each label of the entry its own palette colour, by its
+// rank among the entry's ids, with no table (an atlas with names only): 20
+// labels take 20 distinct colours, the same colours on every parse; the
+// 21st takes the first again. Control: "table" without a table is refused.
+TEST(LabelTable, AutoColoursAreDistinctAndStable) {
+    std::string ids;
+    for (int id = 1; id <= 21; ++id)
+        ids += (id > 1 ? ", " : "") + std::to_string(id * 3);
+    const std::string points = R"([{"value": 0, "color": [1, 1, 1], "alpha": 0},
+                                   {"value": 255, "color": [1, 1, 1], "alpha": 0.5}])";
+    const auto scene = [&](const std::string& order) {
+        return parseScene(patched(R"({"labels": {"phantom": true}, "transfer": {"points": )" +
+                                  points + R"(, "labels": [{"labels": [)" + order +
+                                  R"(], "color": "auto", "points": )" + points + "}]}}"),
+                          "/nonexistent", "scene.json");
+    };
+    const Scene s = scene(ids);
+    ASSERT_EQ(s.labelTransfers.size(), 21u);
+    std::vector<glm::vec3> colours;
+    for (std::size_t i = 0; i < 20; ++i) {
+        EXPECT_EQ(s.labelTransfers[i].ids, std::vector<std::int64_t>{std::int64_t(3 * (i + 1))});
+        const glm::vec3 c = s.labelTransfers[i].transfer.points[1].color;
+        for (const glm::vec3& other : colours)
+            EXPECT_GT(glm::length(c - other), 0.05f) << "label " << 3 * (i + 1);
+        colours.push_back(c);
+        EXPECT_EQ(s.labelTransfers[i].transfer.points[1].alpha, 0.5f) << "the points' opacity";
+    }
+    EXPECT_EQ(s.labelTransfers[20].transfer.points[1].color, colours[0]);
+    const Scene shuffled = scene("63, 3, 30, 6, 9, 12, 15, 18, 21, 24, 27, 33, 36, 39, 42, 45, "
+                                 "48, 51, 54, 57, 60");
+    for (std::size_t i = 0; i < 21; ++i)
+        EXPECT_EQ(shuffled.labelTransfers[i].transfer.points[1].color,
+                  s.labelTransfers[i].transfer.points[1].color)
+            << "the colour follows the id's rank, not the order written";
+}
+
 // The table's names work where names do; "color": "table" makes one
 // transfer function per label, the points' opacities in its colour.
 TEST(LabelTable, ASceneTakesItsNamesAndColours) {
