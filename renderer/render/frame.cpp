@@ -8,6 +8,7 @@
 #include "render/slicing/slicer.hpp"
 #include "shared/bindings.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace cutaway::render {

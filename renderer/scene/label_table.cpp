@@ -3,8 +3,10 @@
 #include "core/error.hpp"
 #include "core/quote_text.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <vector>
 

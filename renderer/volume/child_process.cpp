@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "core/quote_text.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
