@@ -167,11 +167,13 @@ struct ExportArgs {
     std::string frame;
     int oversample = 1;
     bool raw = false;
+    std::string type = "auto";
 };
 
 int runExport(const ExportArgs& args) {
     cutaway::job::ExportRequest request{args.output, std::nullopt, !args.raw, args.oversample};
     if (!args.labelsOutput.empty()) request.labelsOutput = args.labelsOutput;
+    if (args.type != "auto") request.type = cutaway::parseVoxelType(args.type, "--type");
     cutaway::job::checkExportName(request);
     const cutaway::Scene base = cutaway::loadScene(args.scene, parseSettings(args.sets));
     int frame = base.animation.firstFrame;
@@ -336,6 +338,10 @@ CLI::App* addExport(CLI::App& app, ExportArgs& args) {
                      "A grid K times finer along each axis (1-4, default 1): cut faces alias K "
                      "times less")
         ->check(CLI::Range(1, cutaway::job::kMostOversample));
+    exportCommand->add_option("--type", args.type,
+                              "Voxel type written: auto (the scan's own where the values fit "
+                              "it, else float32; default), uint8, int8, uint16, int16, uint32, "
+                              "int32, float32 or float64");
     exportCommand->add_flag("--raw", args.raw,
                             "Raw encoding instead of gzip (NRRD; NIfTI by its name)");
     return exportCommand;

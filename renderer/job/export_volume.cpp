@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 
@@ -41,6 +43,10 @@ Exported exportVolume(const Scene& given, bool withLabels, int oversample) {
     auto scan = std::make_shared<Volume>(loadSceneVolume(given, &nonFinite));
     const Scene scene = inVolumeFrame(given, *scan); // placements in LPS or RAS placed
     Exported result;
+    result.sourceType = scan->type;
+    result.sourceSlope = scan->slope;
+    result.sourceInter = scan->inter;
+    const auto codes = scan->niftiCodes;
     if (nonFinite > 0)
         result.warnings.push_back(nonFiniteWarning(scene, nonFinite, scan->voxelCount()));
     const float empty = emptyValue(scene, *scan);
@@ -81,6 +87,7 @@ Exported exportVolume(const Scene& given, bool withLabels, int oversample) {
          operatorsOutside(scene, placed.worldLo, placed.worldLo + placed.volume.extent()))
         result.warnings.push_back(std::move(o.message));
     result.volume = deform(placed, empty, operators::Sampling::Trilinear).volume;
+    result.volume.niftiCodes = codes;
     if (withLabels) {
         // On the scan's grid exactly (loadSceneLabels allows spacings 0.1 %
         // apart, and the render ignores origins and directions), so that every
@@ -92,6 +99,7 @@ Exported exportVolume(const Scene& given, bool withLabels, int oversample) {
         labelled.volume.direction = placed.volume.direction;
         labelled.volume.space = placed.volume.space;
         result.labels = deform(labelled, 0.0f, operators::Sampling::Nearest).volume;
+        result.labels->niftiCodes = codes;
     }
     return result;
 }
@@ -136,6 +144,78 @@ void checkExportRequest(const Scene& scene, const std::string& sceneName,
     checkExportPaths(scene, request.output, request.labelsOutput);
 }
 
+namespace {
+
+// The stored numbers a voxel type holds.
+std::pair<double, double> rangeOf(VoxelType type) {
+    switch (type) {
+    case VoxelType::U8:
+        return {0, 255};
+    case VoxelType::I8:
+        return {-128, 127};
+    case VoxelType::U16:
+        return {0, 65535};
+    case VoxelType::I16:
+        return {-32768, 32767};
+    case VoxelType::U32:
+        return {0, 4294967295.0};
+    case VoxelType::I32:
+        return {-2147483648.0, 2147483647.0};
+    default:
+        return {-3.4e38, 3.4e38};
+    }
+}
+
+template <typename T>
+void put(std::byte* at, double value) {
+    const T v = static_cast<T>(value);
+    std::memcpy(at, &v, sizeof v);
+}
+
+// Stores `value` (in range, whole for an integer type) as voxel i of `v`.
+void setRaw(Volume& v, std::size_t i, double value) {
+    std::byte* at = v.data.data() + i * voxelSize(v.type);
+    switch (v.type) {
+    case VoxelType::U8:
+        return put<std::uint8_t>(at, value);
+    case VoxelType::I8:
+        return put<std::int8_t>(at, value);
+    case VoxelType::U16:
+        return put<std::uint16_t>(at, value);
+    case VoxelType::I16:
+        return put<std::int16_t>(at, value);
+    case VoxelType::U32:
+        return put<std::uint32_t>(at, value);
+    case VoxelType::I32:
+        return put<std::int32_t>(at, value);
+    case VoxelType::F32:
+        return put<float>(at, value);
+    case VoxelType::F64:
+        return put<double>(at, value);
+    }
+}
+
+} // namespace
+
+std::optional<Volume> storedAs(const Exported& exported, VoxelType type) {
+    const Volume& in = exported.volume;
+    const bool integer = type != VoxelType::F32 && type != VoxelType::F64;
+    const double slope = integer ? exported.sourceSlope : 1.0;
+    const double inter = integer ? exported.sourceInter : 0.0;
+    Volume out = Volume::allocate(in.dims, type, in.spacing);
+    out.origin = in.origin, out.direction = in.direction, out.space = in.space;
+    out.niftiCodes = in.niftiCodes;
+    out.slope = slope, out.inter = inter;
+    const auto [lo, hi] = rangeOf(type);
+    for (std::size_t i = 0; i < in.voxelCount(); ++i) {
+        double raw = (in.value(i) - inter) / slope;
+        if (integer) raw = std::round(raw);
+        if (!(raw >= lo && raw <= hi)) return std::nullopt;
+        setRaw(out, i, raw);
+    }
+    return out;
+}
+
 void writeExport(const Exported& exported, const ExportRequest& request,
                  const std::function<void(const std::filesystem::path&, const Volume&)>& wrote) {
     const auto write = [&](const std::filesystem::path& path, const Volume& v) {
@@ -146,7 +226,21 @@ void writeExport(const Exported& exported, const ExportRequest& request,
             writeNifti(path, v); // gzip or not by its name
         if (wrote) wrote(path, v);
     };
-    write(request.output, exported.volume);
+    // The scan's own type where the values fit it, or the one asked for.
+    // NRRD has no standard scaling (ParaView and Slicer would read the raw
+    // numbers), so a scaled scan goes to NRRD as float32 unless asked.
+    const bool scaled = exported.sourceSlope != 1.0 || exported.sourceInter != 0.0;
+    const VoxelType type = request.type ? *request.type
+                           : scaled && formatOf(request.output) == ExportFormat::Nrrd
+                               ? VoxelType::F32
+                               : exported.sourceType;
+    std::optional<Volume> typed =
+        type == VoxelType::F32 ? std::optional<Volume>() : storedAs(exported, type);
+    if (!typed && request.type && type != VoxelType::F32)
+        throw InputError("--type " + std::string(voxelTypeName(type)) +
+                         ": the deformed volume holds values that " +
+                         std::string(voxelTypeName(type)) + " cannot hold");
+    write(request.output, typed ? *typed : exported.volume);
     if (!exported.labels || !request.labelsOutput) return;
     try {
         write(*request.labelsOutput, *exported.labels);

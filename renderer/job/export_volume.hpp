@@ -30,7 +30,11 @@ std::vector<float> featureFieldCpu(const Volume& volume, const Volume* labels,
 /// scan's grid where the scan has it (physicalPosition): the grid grows by
 /// whole voxels along the scan's index axes to hold what operators move out.
 struct Exported {
-    Volume volume;                     ///< the scan deformed, float32
+    Volume volume; ///< the scan deformed, float32
+    /// The scan's voxel type and scaling as read: writeExport stores the
+    /// volume in them where its values fit (ExportRequest::type).
+    VoxelType sourceType = VoxelType::F32;
+    double sourceSlope = 1.0, sourceInter = 0.0;
     std::optional<Volume> labels;      ///< the label volume deformed alike, when asked for
     std::vector<std::string> warnings; ///< what a render would warn of (operators outside)
 };
@@ -52,7 +56,16 @@ struct ExportRequest {
     std::optional<std::filesystem::path> labelsOutput;
     bool compress = true; ///< gzip; false writes raw
     int oversample = 1;   ///< --oversample, [1, kMostOversample]
+    /// --type: the voxel type written; none ("auto"): the scan's own where
+    /// every resampled value, rounded for an integer type, fits it (with the
+    /// scan's slope and intercept), else float32; float32 for a scaled scan
+    /// written as NRRD, which has no standard scaling.
+    std::optional<VoxelType> type;
 };
+
+/// `exported`'s volume stored as `type` with the scan's scaling, each value
+/// rounded for an integer type; none when a value does not fit the type.
+std::optional<Volume> storedAs(const Exported& exported, VoxelType type);
 
 /// The finest --oversample: 4^3 = 64 voxels for each of the scan's.
 inline constexpr int kMostOversample = 4;

@@ -291,6 +291,7 @@ void readGeometry(const HeaderBytes& h, Volume& v, const std::string& ctx) {
         v.direction = toLps * placement->direction;
         v.origin = toLps * placement->origin;
         v.space = Space::LPS;
+        v.niftiCodes = std::array<int, 2>{int(h.code(l.qformCode)), int(h.code(l.sformCode))};
     }
 }
 

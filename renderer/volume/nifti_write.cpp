@@ -2,7 +2,8 @@
 // 348 bytes, an empty extension flag, then the voxels, little endian. A
 // volume in patient coordinates (Space::LPS) gets its affine in RAS as both
 // the sform (exact) and the qform (its rotation, for readers that take only
-// that; a sheared grid's is approximate), codes 1 (scanner); any other, a
+// that; a sheared grid's is approximate), with the codes the volume's own
+// NIfTI gave (Volume::niftiCodes), else 1 (scanner); any other, a
 // space without anatomical meaning too, gets the spacing alone (codes 0). Written atomically, as
 // the NRRD writer does.
 #include "core/error.hpp"
@@ -132,8 +133,10 @@ Header headerOf(const Volume& v) {
         const glm::dvec3 origin = flip * v.origin;
         const std::array<double, 4> q = quaternionOf(rotation);
         qfac = q[3];
-        h.put<std::int16_t>(252, 1);
-        h.put<std::int16_t>(254, 1);
+        // The codes the scan's NIfTI gave (2 aligned, 4 MNI, ...), else 1 (scanner).
+        const std::array<int, 2> codes = v.niftiCodes.value_or(std::array<int, 2>{1, 1});
+        h.put<std::int16_t>(252, std::int16_t(codes[0]));
+        h.put<std::int16_t>(254, std::int16_t(codes[1]));
         for (int i = 0; i < 3; ++i) {
             h.put<float>(256 + 4 * std::size_t(i), float(q[std::size_t(i)]));
             h.put<float>(268 + 4 * std::size_t(i), float(origin[i]));

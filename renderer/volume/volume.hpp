@@ -15,6 +15,7 @@
 // Anatomical spaces are all stored as LPS, the DICOM and ITK convention: a
 // NIfTI's RAS sform/qform and a NRRD's RAS or LAS space are converted on
 // reading.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -57,6 +58,10 @@ struct Volume {
     double slope = 1.0; ///< value = raw * slope + inter
     double inter = 0.0;
     std::vector<std::byte> data; ///< voxelCount() * voxelSize(type) bytes
+    /// NIfTI's qform_code and sform_code as the file gave them (1 scanner,
+    /// 2 aligned, 3 Talairach, 4 MNI, 5 template), when it was NIfTI with a
+    /// placement: an export writes them again. None for other formats.
+    std::optional<std::array<int, 2>> niftiCodes;
 
     std::size_t voxelCount() const;
     std::size_t index(int x, int y, int z) const; ///< x + dims.x * (y + dims.y * z)

@@ -99,8 +99,8 @@ TEST_F(ExportNifti, NiBabelReadsTheVoxelsAndTheAffine) {
         ASSERT_FALSE(read.is_discarded());
         EXPECT_EQ(read["shape"],
                   nlohmann::json::array({reference.dims.x, reference.dims.y, reference.dims.z}));
-        EXPECT_EQ(read["dtype"], "float32");
-        EXPECT_EQ(read["codes"], nlohmann::json::array({1, 1}));
+        EXPECT_EQ(read["dtype"], "uint8") << "the scan's own type: its values fit it";
+        EXPECT_EQ(read["codes"], nlohmann::json::array({1, 1})) << "a NRRD scan: scanner";
         const glm::dmat4 expected = rasAffine(reference);
         EXPECT_LT(worstAffineError(read["affine"], expected), 1e-4) << read["affine"].dump();
         // The qform holds the same rotation, its mirror in qfac.
@@ -133,6 +133,57 @@ TEST_F(ExportNifti, TheLabelsExportAsIntegersAndNamesAreChecked) {
     }
     EXPECT_FALSE(fs::exists(m_dir / "y.nii.gz"));
     EXPECT_FALSE(fs::exists(m_dir / "y.nifti"));
+}
+
+// The export keeps the scan's identity: a NIfTI scan with sform code 4
+// (MNI) and qform code 2 (aligned), int16 with a slope and intercept, comes
+// back with those codes and as int16 with its scaling (it came back as
+// codes 1 and float32). --type chooses; a type the values do not fit is
+// refused, nothing written. Control: --type float32 gives float32, and a
+// scaled scan written as NRRD (no standard scaling) is float32.
+TEST_F(ExportNifti, TheExportKeepsTheScansCodesAndType) {
+    const fs::path script = write("make.py", R"(import sys
+import numpy, nibabel
+data = (numpy.arange(20 * 18 * 14) % 200).reshape((20, 18, 14), order="F").astype(numpy.int16)
+affine = numpy.diag([1.0, 1.25, 2.0, 1.0])
+img = nibabel.Nifti1Image(data, affine)
+img.header.set_sform(affine, code=4)
+img.header.set_qform(affine, code=2)
+img.header.set_slope_inter(2.0, -1024.0)
+nibabel.save(img, sys.argv[1])
+)");
+    ASSERT_EQ(
+        runProgram("/usr/bin/python3", script.string() + " " + (m_dir / "mni.nii.gz").string())
+            .code,
+        0);
+    const fs::path scene = write("mni.json", R"({"version": 1, "volume": {"file": "mni.nii.gz"},
+        "operators": [{"type": "peeler", "placement": {"translate": [0, 0, 9],
+                       "scale": [10, 12, 10]}}]})");
+    const auto exportMni = [&](const std::string& options) {
+        return runCutaway("export " + scene.string() + " " + options);
+    };
+    ASSERT_EQ(exportMni("-o " + (m_dir / "a.nii.gz").string()).code, 0);
+    nlohmann::json read = nibabel(m_dir / "a.nii.gz");
+    EXPECT_EQ(read["codes"], nlohmann::json::array({4, 2}));
+    EXPECT_EQ(read["dtype"], "int16");
+    const Volume a = readVolume(m_dir / "a.nii.gz");
+    EXPECT_EQ(a.slope, 2.0);
+    EXPECT_EQ(a.inter, -1024.0);
+
+    ASSERT_EQ(exportMni("-o " + (m_dir / "f.nii.gz").string() + " --type float32").code, 0);
+    read = nibabel(m_dir / "f.nii.gz");
+    EXPECT_EQ(read["dtype"], "float32") << "control";
+    EXPECT_EQ(read["codes"], nlohmann::json::array({4, 2}));
+    ASSERT_EQ(exportMni("-o " + (m_dir / "n.nrrd").string()).code, 0);
+    EXPECT_EQ(readVolume(m_dir / "n.nrrd").type, VoxelType::F32) << "NRRD has no scaling";
+
+    // Raw numbers 0..199 (values -1024..-626): int8 cannot hold them.
+    const CommandResult refused = exportMni("-o " + (m_dir / "u.nii.gz").string() + " --type int8");
+    EXPECT_EQ(refused.code, 2) << refused.output;
+    EXPECT_NE(refused.output.find("--type int8: the deformed volume holds values"),
+              std::string::npos)
+        << refused.output;
+    EXPECT_FALSE(fs::exists(m_dir / "u.nii.gz"));
 }
 
 } // namespace

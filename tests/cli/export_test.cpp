@@ -181,7 +181,7 @@ TEST(DeformedVolume, AnOperatorOutsideTheVolumeDoesNotGrowTheGrid) {
     EXPECT_EQ(out.data, flapOnly.data) << "and the stray operator changes nothing";
 }
 
-TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
+TEST_F(CliTest, ExportWritesANrrdOfTheFrameInTheScansType) {
     const auto scene = write("s.json", R"({ "version": 1,
         "volume": { "phantom": "head", "size": [24, 24, 24] },
         "operators": [ { "type": "dilator", "placement": { "scale": [20, 20, 20] },
@@ -191,7 +191,11 @@ TEST_F(CliTest, ExportWritesAFloatNrrdOfTheFrame) {
     ASSERT_EQ(r.code, 0) << r.output;
     const Volume out = readVolume(m_dir / "d.NRRD");
     EXPECT_EQ(out.dims, glm::ivec3(24));
-    EXPECT_EQ(out.type, VoxelType::F32);
+    EXPECT_EQ(out.type, VoxelType::U8) << "the phantom's type: the values, rounded, fit it";
+    r = runCutaway("export " + scene.string() + " --type float32 -o " +
+                   (m_dir / "f.nrrd").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readVolume(m_dir / "f.nrrd").type, VoxelType::F32);
     EXPECT_EQ(runCutaway("export " + scene.string() + " -o " + (m_dir / "d.png").string()).code, 2);
     const auto overlap = write("o.json", R"({ "version": 1, "volume": { "phantom": "head" },
         "operators": [ { "type": "dilator", "placement": { "scale": [20, 20, 20] } },
