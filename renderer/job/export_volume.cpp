@@ -16,7 +16,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <memory>
 
@@ -144,59 +143,6 @@ void checkExportRequest(const Scene& scene, const std::string& sceneName,
     checkExportPaths(scene, request.output, request.labelsOutput);
 }
 
-namespace {
-
-// The stored numbers a voxel type holds.
-std::pair<double, double> rangeOf(VoxelType type) {
-    switch (type) {
-    case VoxelType::U8:
-        return {0, 255};
-    case VoxelType::I8:
-        return {-128, 127};
-    case VoxelType::U16:
-        return {0, 65535};
-    case VoxelType::I16:
-        return {-32768, 32767};
-    case VoxelType::U32:
-        return {0, 4294967295.0};
-    case VoxelType::I32:
-        return {-2147483648.0, 2147483647.0};
-    default:
-        return {-3.4e38, 3.4e38};
-    }
-}
-
-template <typename T>
-void put(std::byte* at, double value) {
-    const T v = static_cast<T>(value);
-    std::memcpy(at, &v, sizeof v);
-}
-
-// Stores `value` (in range, whole for an integer type) as voxel i of `v`.
-void setRaw(Volume& v, std::size_t i, double value) {
-    std::byte* at = v.data.data() + i * voxelSize(v.type);
-    switch (v.type) {
-    case VoxelType::U8:
-        return put<std::uint8_t>(at, value);
-    case VoxelType::I8:
-        return put<std::int8_t>(at, value);
-    case VoxelType::U16:
-        return put<std::uint16_t>(at, value);
-    case VoxelType::I16:
-        return put<std::int16_t>(at, value);
-    case VoxelType::U32:
-        return put<std::uint32_t>(at, value);
-    case VoxelType::I32:
-        return put<std::int32_t>(at, value);
-    case VoxelType::F32:
-        return put<float>(at, value);
-    case VoxelType::F64:
-        return put<double>(at, value);
-    }
-}
-
-} // namespace
-
 std::optional<Volume> storedAs(const Exported& exported, VoxelType type) {
     const Volume& in = exported.volume;
     const bool integer = type != VoxelType::F32 && type != VoxelType::F64;
@@ -206,12 +152,12 @@ std::optional<Volume> storedAs(const Exported& exported, VoxelType type) {
     out.origin = in.origin, out.direction = in.direction, out.space = in.space;
     out.niftiCodes = in.niftiCodes;
     out.slope = slope, out.inter = inter;
-    const auto [lo, hi] = rangeOf(type);
+    const auto [lo, hi] = storedRange(type);
     for (std::size_t i = 0; i < in.voxelCount(); ++i) {
         double raw = (in.value(i) - inter) / slope;
         if (integer) raw = std::round(raw);
         if (!(raw >= lo && raw <= hi)) return std::nullopt;
-        setRaw(out, i, raw);
+        out.setRaw(i, raw);
     }
     return out;
 }

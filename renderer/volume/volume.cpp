@@ -116,6 +116,22 @@ double Volume::raw(std::size_t i) const {
     return withType(type, [p](auto tag) { return static_cast<double>(load<decltype(tag)>(p)); });
 }
 
+void Volume::setRaw(std::size_t i, double value) {
+    std::byte* p = data.data() + i * voxelSize(type);
+    withType(type, [&](auto tag) {
+        const auto v = static_cast<decltype(tag)>(value);
+        std::memcpy(p, &v, sizeof v);
+    });
+}
+
+std::pair<double, double> storedRange(VoxelType type) {
+    return withType(type, [](auto tag) {
+        using T = decltype(tag);
+        return std::pair<double, double>(std::numeric_limits<T>::lowest(),
+                                         std::numeric_limits<T>::max());
+    });
+}
+
 Volume Volume::allocate(glm::ivec3 dims, VoxelType type, glm::dvec3 spacing) {
     const std::int64_t sizes[3] = {dims.x, dims.y, dims.z};
     const std::size_t bytes = detail::checkedByteCount(sizes, type, "volume");

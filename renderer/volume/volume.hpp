@@ -24,6 +24,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace cutaway {
@@ -34,6 +35,8 @@ enum class VoxelType { U8, I8, U16, I16, U32, I32, F32, F64 };
 std::size_t voxelSize(VoxelType type);
 /// Canonical name: "uint8", "int8", "uint16", "int16", "uint32", "int32", "float32", "float64".
 std::string_view voxelTypeName(VoxelType type);
+/// The numbers a voxel type stores, lowest and highest (floats: their finite range).
+std::pair<double, double> storedRange(VoxelType type);
 /// Parses a canonical name (as above); throws InputError naming `context` otherwise.
 VoxelType parseVoxelType(std::string_view name, std::string_view context);
 
@@ -66,6 +69,9 @@ struct Volume {
     std::size_t voxelCount() const;
     std::size_t index(int x, int y, int z) const; ///< x + dims.x * (y + dims.y * z)
     double raw(std::size_t i) const;              ///< the stored number, converted to double
+    /// Stores `value` as voxel i's number (in the type's range, whole for an
+    /// integer type: see storedRange).
+    void setRaw(std::size_t i, double value);
     double value(std::size_t i) const { return raw(i) * slope + inter; }
     double value(int x, int y, int z) const { return value(index(x, y, z)); }
     glm::dvec3 extent() const { return glm::dvec3(dims) * spacing; } ///< millimetres
