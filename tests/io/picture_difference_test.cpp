@@ -5,6 +5,7 @@
 #include <cmath>
 #include <gtest/gtest.h>
 #include <stdexcept>
+#include <vector>
 
 namespace cutaway::test {
 namespace {
@@ -54,6 +55,34 @@ TEST(PictureDifference, APixelCountsAsOffOnlyPastTheVisibleStep) {
 
 TEST(PictureDifference, RefusesImagesOfDifferentSizes) {
     EXPECT_THROW(comparePictures(flat(2, 2, 0.0f), flat(2, 3, 0.0f)), std::invalid_argument);
+    EXPECT_THROW(comparePictures(flat(2, 2, 0.0f), flat(2, 2, 0.0f), std::vector<bool>(3)),
+                 std::invalid_argument);
+}
+
+TEST(PictureDifference, AMaskKeepsOnlyItsPixels) {
+    // A 7 x 5 image, opaque but for its first column: eroded by one pixel,
+    // the interior is columns 2..5 of rows 1..3.
+    Image a = flat(7, 5, 0.5f);
+    for (int y = 0; y < 5; ++y)
+        a.pixel(0, y)[3] = 0.5f;
+    const std::vector<bool> inside = opaqueInterior(a, 1);
+    std::size_t count = 0;
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x) {
+            const bool expected = x >= 2 && x <= 5 && y >= 1 && y <= 3;
+            EXPECT_EQ(inside[std::size_t(y) * 7 + std::size_t(x)], expected) << x << "," << y;
+            count += expected;
+        }
+    // A difference outside the mask is not seen; one inside is, over the
+    // mask's pixels only. Control: the whole image sees both.
+    Image b = a;
+    b.pixel(0, 0)[0] = 0.9f;
+    EXPECT_TRUE(std::isinf(comparePictures(a, b, inside).psnr));
+    b.pixel(3, 2)[0] = 0.6f;
+    const PictureDifference masked = comparePictures(a, b, inside);
+    EXPECT_EQ(masked.pixels, count);
+    EXPECT_NEAR(masked.shareOff, 1.0 / double(count), 1e-12);
+    EXPECT_NEAR(comparePictures(a, b).shareOff, 2.0 / 35.0, 1e-12);
 }
 
 } // namespace

@@ -99,6 +99,42 @@ TEST(PhantomVolumes, ShapeFollowsPhysicalSpaceNotTheGrid) {
     EXPECT_GT(static_cast<double>(agree) / static_cast<double>(total), 0.97);
 }
 
+// Each phantom is a continuous object of its box: the grid only samples it.
+// On a grid three times finer over the same box, voxel 3i + 1's centre is
+// the coarse voxel i's, so the two must hold the same value there (up to the
+// rounding of a value that falls on a half when the centre's position is
+// computed two ways). Control: the finer grid's next voxel, a third of a
+// coarse voxel away, differs at the edges, as would an edge ramp that
+// followed the grid (1.5 voxels wide on one grid, half a coarse voxel on
+// the other).
+TEST(PhantomVolumes, TheSameObjectAtThreeTimesTheResolution) {
+    for (const std::string name : {"head", "orange"}) {
+        SCOPED_TRACE(name);
+        const glm::ivec3 n(30, 28, 32);
+        const glm::dvec3 s(1.5, 1.5, 1.25);
+        const Phantom coarse = makePhantom(name, n, s);
+        const Phantom fine = makePhantom(name, 3 * n, s / 3.0);
+        std::size_t total = 0, apart = 0, apartNext = 0;
+        double worst = 0.0;
+        for (int z = 0; z < n.z; ++z)
+            for (int y = 0; y < n.y; ++y)
+                for (int x = 0; x < n.x; ++x) {
+                    const double c = coarse.values.value(x, y, z);
+                    const double f = fine.values.value(3 * x + 1, 3 * y + 1, 3 * z + 1);
+                    const double next = fine.values.value(3 * x + 2, 3 * y + 1, 3 * z + 1);
+                    worst = std::max(worst, std::abs(c - f));
+                    apart += c != f;
+                    apartNext += std::abs(c - next) > 1.0;
+                    ++total;
+                }
+        EXPECT_LE(worst, 1.0);
+        EXPECT_LT(double(apart) / double(total), 1e-3);
+        std::printf("%s: %zu of %zu apart, %zu for the next voxel\n", name.c_str(), apart, total,
+                    apartNext);
+        EXPECT_GT(double(apartNext) / double(total), 0.02) << "control: the next voxel";
+    }
+}
+
 TEST(PhantomVolumes, BadRequestsAreInputErrors) {
     EXPECT_NE(inputError([] {
                   makePhantom("pear", {32, 32, 32});
