@@ -1,14 +1,14 @@
 #version 460
 // Bakes the gradient of the normalized volume once per volume (section 5 of
-// the paper: "the gradients can also be stored as textures"). 3x3x3 Sobel-style
-// operator; see shared/gradient.h.
+// the paper: "the gradients can also be stored as textures"). A 3x3x3
+// operator, Farid and Simoncelli's matched pair; see shared/gradient.h.
 // flavours: storage
 #extension GL_GOOGLE_include_directive : require
 #include "shared/gradient.h"
 
 // Each invocation bakes a block kRun voxels wide along x and kColumn deep
 // along z, walking z with a sliding window of three planes. The operator is
-// separable (sobelWeight: [1 2 1] / 4 across each axis it does not
+// separable (gradientWeight: the prefilter across each axis it does not
 // differentiate), so each plane keeps, per column x, the value smoothed
 // along y and its difference along y: (kRun + 2) * 3 texel fetches per plane
 // for kRun voxels (4.5 per voxel instead of 9) and a few adds per voxel
@@ -42,7 +42,7 @@ float at(ivec3 p) {
 }
 
 // Plane k of the window (0: z - 1, 1: z, 2: z + 1), column i (x - 1 + i):
-// the value smoothed along y ([1 2 1]) and its central difference along y.
+// the value prefiltered along y and its central difference along y.
 float smoothY[3][kRun + 2];
 float diffY[3][kRun + 2];
 
@@ -50,16 +50,21 @@ void loadPlane(int k, ivec3 p) {
     for (int i = 0; i < kRun + 2; ++i) {
         ivec3 q = p + ivec3(i - 1, 0, 0);
         float below = at(q - ivec3(0, 1, 0)), here = at(q), above = at(q + ivec3(0, 1, 0));
-        smoothY[k][i] = (below + above) + 2.0 * here;
+        smoothY[k][i] = (below + above) * kGradientSideTap + here * kGradientMiddleTap;
         diffY[k][i] = above - below;
     }
 }
 
-// [1 2 1] across x of `row` around column i. Each sum adds a voxel's two
-// neighbours first, so a volume mirrored about a plane bakes the mirrored
-// gradient to the bit (rounding does not depend on the side).
+// The prefilter across x of `row` around column i. Each sum adds a voxel's
+// two neighbours first, so a volume mirrored about a plane bakes the
+// mirrored gradient to the bit (rounding does not depend on the side).
 float smoothX(float row[kRun + 2], int i) {
-    return (row[i - 1] + row[i + 1]) + 2.0 * row[i];
+    return (row[i - 1] + row[i + 1]) * kGradientSideTap + row[i] * kGradientMiddleTap;
+}
+
+// The prefilter across z of three planes' terms.
+float smoothZ(float below, float here, float above) {
+    return (below + above) * kGradientSideTap + here * kGradientMiddleTap;
 }
 
 void main() {
@@ -74,14 +79,14 @@ void main() {
             if (id.x + r >= params.dims.x) break;
             int i = r + 1;
             vec3 delta;
-            delta.x = (smoothY[0][i + 1] - smoothY[0][i - 1]) +
-                      2.0 * (smoothY[1][i + 1] - smoothY[1][i - 1]) +
-                      (smoothY[2][i + 1] - smoothY[2][i - 1]);
-            delta.y = smoothX(diffY[0], i) + 2.0 * smoothX(diffY[1], i) + smoothX(diffY[2], i);
+            delta.x = smoothZ(smoothY[0][i + 1] - smoothY[0][i - 1],
+                              smoothY[1][i + 1] - smoothY[1][i - 1],
+                              smoothY[2][i + 1] - smoothY[2][i - 1]);
+            delta.y = smoothZ(smoothX(diffY[0], i), smoothX(diffY[1], i), smoothX(diffY[2], i));
             delta.z = smoothX(smoothY[2], i) - smoothX(smoothY[0], i);
             ivec3 voxel = id + ivec3(r, 0, s);
             imageStore(gradientImage, params.bricked != 0 ? gradientBrickTexel(voxel) : voxel,
-                       encodeGradient(delta * (1.0 / 16.0), params));
+                       encodeGradient(delta, params));
         }
         smoothY[0] = smoothY[1];
         smoothY[1] = smoothY[2];

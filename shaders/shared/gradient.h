@@ -1,11 +1,15 @@
 // Gradient encoding, shared by the bake shader and its CPU reference.
-// The gradient is taken with a 3x3x3 Sobel-style operator: the central
-// difference along each axis, smoothed across it with weights [1 2 1] / 4 in
-// each of the other two axes. Plain central differences show the terraces of
-// voxelized surfaces as contour rings under specular light; the smoothing
-// removes them at the cost of a slightly blurrier normal. Differences are of
-// the normalized value (0..1 over the value window) per millimetre, so
-// anisotropic spacing gives the physical gradient direction. It is stored in an RGBA8_SNORM texel:
+// The gradient is taken with Farid and Simoncelli's matched 3-tap pair
+// (Differentiation of discrete multidimensional signals, IEEE TIP 2004): the
+// central difference along each axis, prefiltered with [p1 p0 p1] across
+// each of the other two, the weights chosen so the gradient's direction
+// depends least on its orientation to the grid. Sobel's [1 2 1] / 4 turned
+// the direction of an oblique surface with the surface's place between
+// voxels, which specular light showed as rings; plain central differences
+// show a voxelized surface's terraces and the values' 8-bit rounding.
+// Differences are of the normalized value (0..1 over the value window) per
+// millimetre, so anisotropic spacing gives the physical gradient direction.
+// It is stored in an RGBA8_SNORM texel:
 // xyz = unit direction (toward increasing value), w = magnitude in [0, 1]
 // where 1 means a change of half the window per voxel step or more.
 #ifndef CUTAWAY_GRADIENT_H
@@ -45,9 +49,15 @@ CW_FUNC ivec3 gradientBrickExtent(ivec3 dims) {
     return ivec3(16 * ((dims.x + 3) / 4), 4 * ((dims.y + 3) / 4), (dims.z + 3) / 4);
 }
 
+// The prefilter's taps, [kGradientSideTap kGradientMiddleTap kGradientSideTap]:
+// they sum to 1, so a linear ramp's gradient is its slope.
+#define kGradientMiddleTap 0.540242f
+#define kGradientSideTap 0.229879f
+
 // Weight of a neighbour at transverse offsets (a, b) in {-1, 0, 1}.
-CW_FUNC float sobelWeight(int a, int b) {
-    return (a == 0 ? 0.5f : 0.25f) * (b == 0 ? 0.5f : 0.25f);
+CW_FUNC float gradientWeight(int a, int b) {
+    return (a == 0 ? kGradientMiddleTap : kGradientSideTap) *
+           (b == 0 ? kGradientMiddleTap : kGradientSideTap);
 }
 
 // `delta` = the smoothed differences (v[x+1] - v[x-1], ...), neighbours

@@ -14,7 +14,7 @@
 
 namespace cutaway::test {
 
-/// The gradient bake on the CPU: the shared header's Sobel weights and
+/// The gradient bake on the CPU: the shared header's gradient weights and
 /// encoding over the normalized texels, one (direction, magnitude) per voxel,
 /// not yet quantized to the GPU's SNORM8.
 std::vector<glm::vec4> cpuGradients(const Volume& volume, bake::ValueWindow window);

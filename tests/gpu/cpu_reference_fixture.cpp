@@ -150,7 +150,7 @@ std::vector<glm::vec4> cpuGradients(const Volume& volume, bake::ValueWindow wind
                 glm::vec3 d(0.0f);
                 for (int a = -1; a <= 1; ++a)
                     for (int b = -1; b <= 1; ++b) {
-                        const float w = shader::sobelWeight(a, b);
+                        const float w = shader::gradientWeight(a, b);
                         d.x += w * (at(x + 1, y + a, z + b) - at(x - 1, y + a, z + b));
                         d.y += w * (at(x + a, y + 1, z + b) - at(x + a, y - 1, z + b));
                         d.z += w * (at(x + a, y + b, z + 1) - at(x + a, y + b, z - 1));

@@ -10,8 +10,10 @@
 //
 // Sampling is fine and the same in millimetres for every grid (a sample
 // every 0.25 mm, opacity per millimetre), so only the reconstruction
-// differs. The bounds hold today's figures, measured on lavapipe, less
-// 1 dB; the controls show that the measure sees terraces and lost detail.
+// differs. The bounds hold the figures measured on lavapipe less 1 dB at
+// most (docs/quality.md): the gradient before Farid and Simoncelli's pair,
+// Sobel's, fails those of the 1 mm and 1.5 mm grids (49.3 and 46.3 dB); the
+// controls show that the measure sees terraces and lost detail.
 //
 // To regenerate the references after an intended change to them (not to
 // the reconstruction, which they must hold still), look at them first, then:
@@ -84,7 +86,7 @@ PictureDifference onSurface(const Image& image, const Image& reference) {
 struct Grid {
     glm::dvec3 spacing;
     const char* name;
-    double floorDb; // today's figure on lavapipe, less 1 dB
+    double floorDb; // the figure measured on lavapipe, less 1 dB at most
 };
 
 TEST_F(Reconstruction, AnEllipsoidOnThickSlices) {
@@ -92,8 +94,8 @@ TEST_F(Reconstruction, AnEllipsoidOnThickSlices) {
     for (RenderMethod method : {RenderMethod::Slicing, RenderMethod::Raycast}) {
         double thin = 0.0, thick = 0.0;
         for (const Grid& grid :
-             {Grid{{1.0, 1.0, 1.0}, "1 mm", 47.9}, Grid{{1.0, 1.0, 1.5}, "1 x 1 x 1.5 mm", 45.0},
-              Grid{{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 34.1}}) {
+             {Grid{{1.0, 1.0, 1.0}, "1 mm", 50.6}, Grid{{1.0, 1.0, 1.5}, "1 x 1 x 1.5 mm", 46.4},
+              Grid{{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 33.8}}) {
             const PictureDifference d =
                 onSurface(renderObject(SmoothObject::Ellipsoid, grid.spacing, method), truth);
             std::printf("ellipsoid, %s, %s: %.2f dB, %.2f %% of pixels off\n", methodName(method),
@@ -111,7 +113,7 @@ TEST_F(Reconstruction, TheBumpsOfABumpyEllipsoid) {
     const Image smooth = objectReference(SmoothObject::Ellipsoid, "ellipsoid");
     for (RenderMethod method : {RenderMethod::Slicing, RenderMethod::Raycast}) {
         for (const Grid& grid :
-             {Grid{{1.0, 1.0, 1.0}, "1 mm", 31.1}, Grid{{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 25.3}}) {
+             {Grid{{1.0, 1.0, 1.0}, "1 mm", 31.4}, Grid{{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 25.4}}) {
             const PictureDifference d =
                 onSurface(renderObject(SmoothObject::Bumpy, grid.spacing, method), truth);
             std::printf("bumpy ellipsoid, %s, %s: %.2f dB, %.2f %% of pixels off\n",
@@ -128,8 +130,8 @@ TEST_F(Reconstruction, TheBumpsOfABumpyEllipsoid) {
 
 // /render/filter "cubic" on the same grids, slicing (the ray caster takes
 // the same samples: cubic_filter_render_test.cpp). Measured on lavapipe:
-// 44.3, 42.5 and 33.8 dB for the ellipsoid (below linear filtering on every
-// grid), 33.3 and 26.4 dB for the bumps (a little above); bounds 1 dB less.
+// 46.6, 43.6 and 33.5 dB for the ellipsoid (below linear filtering on every
+// grid), 33.8 and 26.5 dB for the bumps (a little above); bounds 1 dB less.
 TEST_F(Reconstruction, TheCubicFilterOnTheSameGrids) {
     const Image smooth = objectReference(SmoothObject::Ellipsoid, "ellipsoid");
     const Image bumpy = objectReference(SmoothObject::Bumpy, "bumpy");
@@ -139,11 +141,11 @@ TEST_F(Reconstruction, TheCubicFilterOnTheSameGrids) {
         const Image* truth;
     };
     for (const Case& c :
-         {Case{SmoothObject::Ellipsoid, {{1.0, 1.0, 1.0}, "1 mm", 43.2}, &smooth},
-          Case{SmoothObject::Ellipsoid, {{1.0, 1.0, 1.5}, "1 x 1 x 1.5 mm", 41.5}, &smooth},
-          Case{SmoothObject::Ellipsoid, {{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 32.8}, &smooth},
-          Case{SmoothObject::Bumpy, {{1.0, 1.0, 1.0}, "1 mm", 32.3}, &bumpy},
-          Case{SmoothObject::Bumpy, {{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 25.4}, &bumpy}}) {
+         {Case{SmoothObject::Ellipsoid, {{1.0, 1.0, 1.0}, "1 mm", 45.6}, &smooth},
+          Case{SmoothObject::Ellipsoid, {{1.0, 1.0, 1.5}, "1 x 1 x 1.5 mm", 42.5}, &smooth},
+          Case{SmoothObject::Ellipsoid, {{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 32.4}, &smooth},
+          Case{SmoothObject::Bumpy, {{1.0, 1.0, 1.0}, "1 mm", 32.7}, &bumpy},
+          Case{SmoothObject::Bumpy, {{1.0, 1.0, 3.0}, "1 x 1 x 3 mm", 25.5}, &bumpy}}) {
         const char* name = c.object == SmoothObject::Bumpy ? "bumpy ellipsoid" : "ellipsoid";
         const PictureDifference cubic = onSurface(
             renderObject(c.object, c.grid.spacing, RenderMethod::Slicing, 0.25, Filter::Cubic),
@@ -181,7 +183,7 @@ TEST_F(Reconstruction, TheDemoPhantomAgainstItselfAtTwiceTheResolution) {
         const PictureDifference whole = comparePictures(coarse, truth);
         std::printf("demo head at 2 mm against 1 mm, %s: %.2f dB, %.2f %% of pixels off\n",
                     methodName(method), whole.psnr, 100.0 * whole.shareOff);
-        EXPECT_GT(whole.psnr, 36.7) << methodName(method);
+        EXPECT_GT(whole.psnr, 36.9) << methodName(method);
     }
     // Control: the 1 mm grid rendered now is the reference, so what the
     // figures see is the coarser grid's.

@@ -73,7 +73,7 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
                 EXPECT_GT(coverage, 1000.0) << "the head must show";
                 const ImageDiff d = compareImages(sampled, loaded);
                 // Measured on lavapipe: R8 up to 0.0083, rms 4.2e-4; R16 up to
-                // 3.6e-7 (float rounding: lavapipe weighs 16-bit texels in
+                // 2.6e-5 (float rounding: lavapipe weighs 16-bit texels in
                 // float too). A filter that mixed up two axes or missed the
                 // clamp moves whole edges by more than 0.1.
                 // A GPU weighs 16-bit texels in 8 bits too (expectAgree): up to
@@ -83,7 +83,7 @@ TEST_F(StorageFetch, RendersAsTheSampledTextureDoes) {
                 // the rms below is what sees a filter gone wrong.
                 const float most = !filtersInFloat()              ? kQuantizedMaxAbs
                                    : format == VK_FORMAT_R8_UNORM ? 0.03f
-                                                                  : 1e-5f;
+                                                                  : 1e-4f;
                 EXPECT_LT(d.maxAbs, most) << "rms " << d.rms;
                 EXPECT_LT(d.rms, 2e-3);
                 if (format == VK_FORMAT_R8_UNORM) {
