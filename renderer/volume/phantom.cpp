@@ -2,9 +2,11 @@
 // the voxel centre in millimetres relative to the box centre and R a fixed
 // fraction of the physical extent per axis, so the phantom fills the box
 // whatever the voxel spacing. Each phantom is a continuous object of its box
-// alone: its edges are smoothstep ramps kRampShare of the box wide (1.5 mm in
-// a 128 mm box), and the grid only samples it, so a phantom at twice the
-// resolution over the same box is the same object.
+// alone: its edges are smoothstep ramps of a fixed share of the box (the
+// head's 3/128: 3 mm in a 128 mm box, wide enough that the demo's 160^3 grid
+// resolves them; the orange's 1.5/128, which keeps its thin membranes), and
+// the grid only samples it, so a phantom at twice the resolution over the
+// same box is the same object.
 //
 // Mirror symmetry about x = extent.x / 2 is exact: each row is evaluated for
 // the voxels with x <= centre only, at |x|, and copied to the mirrored voxel.
@@ -44,18 +46,16 @@ struct Sample {
     std::uint8_t label = 0;
 };
 
-/// The width of an edge's ramp, as a share of the box's side.
-constexpr double kRampShare = 1.5 / 128.0;
-
 /// Evaluates f(qx >= 0, qy, qz, ramp width, out) on half of every row and
-/// mirrors it. `share` is R per axis as a share of the box.
+/// mirrors it. `share` is R per axis as a share of the box, `ramp` the width
+/// of an edge's ramp as a share of the box's side.
 template <typename F>
-void fillMirrored(Phantom& p, glm::dvec3 share, F&& f) {
+void fillMirrored(Phantom& p, glm::dvec3 share, double ramp, F&& f) {
     const glm::ivec3 n = p.values.dims;
     const glm::dvec3 s = p.values.spacing;
     const glm::dvec3 radius = share * p.values.extent();
-    // In q the ramp is kRampShare of the box along the axis whose R is its smallest share.
-    const double w = kRampShare / std::min({share.x, share.y, share.z});
+    // In q the ramp is `ramp` of the box along the axis whose R is its smallest share.
+    const double w = ramp / std::min({share.x, share.y, share.z});
     auto* values = reinterpret_cast<std::uint8_t*>(p.values.data.data());
     auto* labels = reinterpret_cast<std::uint8_t*>(p.labels.data.data());
     const int half = (n.x + 1) / 2;
@@ -261,10 +261,10 @@ Phantom makePhantom(std::string_view name, glm::ivec3 dims, glm::dvec3 spacing) 
     p.labels = Volume::allocate(dims, VoxelType::U8, spacing);
     if (name == "head") {
         // Head breadth : length : height ~ 0.83 : 0.92 : 1, with room for nose and ears.
-        fillMirrored(p, glm::dvec3(0.38, 0.42, 0.45), head);
+        fillMirrored(p, glm::dvec3(0.38, 0.42, 0.45), 3.0 / 128.0, head);
         p.labelNames = {"background", "skin", "skull", "brain"};
     } else {
-        fillMirrored(p, glm::dvec3(0.46), orange);
+        fillMirrored(p, glm::dvec3(0.46), 1.5 / 128.0, orange);
         p.labelNames = {"background", "rind", "pith", "segments"};
     }
     return p;

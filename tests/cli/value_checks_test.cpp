@@ -62,7 +62,7 @@ TEST_F(ValueChecks, ATransferFunctionInOtherUnitsIsWarnedOf) {
         EXPECT_EQ(r.code, 0) << r.output;
         EXPECT_NE(r.output.find("warning: " + (m_dir / "n.json").string() +
                                 ": /transfer/points: the transfer function's points lie in "
-                                "[0.1, 1], and the volume's values span [-1000, 1280]"),
+                                "[0.1, 1], and the volume's values span [-1000, 1220]"),
                   std::string::npos)
             << command << r.output;
     }
@@ -71,7 +71,7 @@ TEST_F(ValueChecks, ATransferFunctionInOtherUnitsIsWarnedOf) {
         R"({"value": 5000, "color": [1, 1, 1], "alpha": 0}, {"value": 6000, "color": [1, 1, 1], "alpha": 1},
            {"value": 7000, "color": [1, 1, 1], "alpha": 0})"));
     EXPECT_NE(outside.output.find("/transfer/points: the transfer function is visible only in "
-                                  "[5000, 7000], and the volume's values span [-1000, 1280]: "
+                                  "[5000, 7000], and the volume's values span [-1000, 1220]: "
                                   "nothing shows"),
               std::string::npos)
         << outside.output;
@@ -133,7 +133,7 @@ TEST_F(ValueChecks, ValidateNotesWhatItDerivesOffATerminal) {
                        "alignment": {"mode": "surface"}}])"));
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("note: " + (m_dir / "s.json").string() +
-                            ": the volume's values span [-1000, 1280]"),
+                            ": the volume's values span [-1000, 1220]"),
               std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("/operators/0/alignment/threshold: Otsu's threshold of the volume is "),
