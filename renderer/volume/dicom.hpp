@@ -1,6 +1,7 @@
 #pragma once
-// DICOM series, read through GDCM (the field's maintained DICOM library; no
-// DICOM parsing of our own). A volume may be named as a folder of DICOM files
+// DICOM series, read through GDCM (the field's maintained DICOM library; of
+// our own only a walk over the element headers that refuses a declared
+// length past the file's end before GDCM allocates it: dicom_lengths.hpp). A volume may be named as a folder of DICOM files
 // (searched recursively), a DICOMDIR (the folder it indexes) or one file of
 // a series (the series it belongs to, from the files beside it).
 //

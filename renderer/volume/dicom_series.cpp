@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "core/quote_text.hpp"
 #include "volume/dicom.hpp"
+#include "volume/dicom_lengths.hpp"
 #include "volume/io_util.hpp"
 
 #include <algorithm>
@@ -49,6 +50,7 @@ struct FileTags {
 // One file's tags, through GDCM's Scanner (a file at a time, so that a
 // crash inside GDCM is known to be this file's: the progress names it).
 FileTags scanFile(const std::string& file) {
+    if (!detail::checkDeclaredLengths(file)) return {};
     gdcm::Scanner scanner;
     for (const gdcm::Tag& t : {kSeriesUid, kSeriesNumber, kSeriesDescription, kModality, kRows,
                                kColumns, kSopClass, kBitsAllocated})

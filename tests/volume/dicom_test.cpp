@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <numbers>
 
 namespace cutaway::test {
@@ -157,9 +158,8 @@ TEST_F(Dicom, AForeignFileIsPassedOverATruncatedSliceRefused) {
     EXPECT_NE(message.find("slice0004.dcm"), std::string::npos) << message;
 }
 
-// A DICOM file cut short in its header (here 128 zeros and "DICM", and a real
-// slice cut at 300 bytes inside a series folder) reaches an assertion in
-// GDCM's reader. GDCM parses in a child process, so that is an error naming
+// A DICOM file cut short in its header (here 128 zeros and "DICM") reaches
+// an assertion in GDCM's reader. GDCM parses in a child process, so that is an error naming
 // the file, not an abort of cutaway. Control: the same parse in this process
 // dies of the assertion (a death test).
 TEST_F(Dicom, AHeaderCutShortIsRefusedNotAnAbort) {
@@ -177,10 +177,14 @@ TEST_F(Dicom, AHeaderCutShortIsRefusedNotAnAbort) {
                   std::string::npos)
             << read;
     }
+    // A slice cut inside an element is refused before GDCM reads it (volume/
+    // dicom_lengths.hpp), naming the element.
     const fs::path folder = write("series");
     fs::resize_file(folder / "slice0003.dcm", 300);
     const std::string cut = messageOf([&] { readDicom(folder); });
-    EXPECT_NE(cut.find("slice0003.dcm: a damaged or truncated DICOM file"), std::string::npos)
+    EXPECT_NE(cut.find("slice0003.dcm: its element (0002,0012) declares 28 bytes where the file "
+                       "holds 0 after it (cut short, or damaged)"),
+              std::string::npos)
         << cut;
 
     GTEST_FLAG_SET(death_test_style, "threadsafe");
@@ -261,6 +265,28 @@ TEST_F(Dicom, SizesAreCheckedBeforeMemoryIsTaken) {
     EXPECT_NE(one.find("only.dcm: its pixel data holds 336 bytes where 40000 x 40000"),
               std::string::npos)
         << one;
+}
+
+// GDCM sizes a value's buffer by its declared length before it reads it: a
+// length past the file's end is refused first (volume/dicom_lengths.hpp),
+// so a slice declaring 2 GiB of pixel data takes no memory for them.
+// Control: the same slice as written reads.
+TEST_F(Dicom, DeclaredLengthsPastTheEndAreRefusedBeforeGdcmReads) {
+    const fs::path folder = write("long");
+    EXPECT_EQ(messageOf([&] { readDicom(folder); }), "(no error)");
+    // The pixel data's 4-byte length lies just before its 14 x 12 int16 pixels.
+    const fs::path slice = folder / "slice0004.dcm";
+    const std::uint64_t lengthAt = fs::file_size(slice) - 14 * 12 * 2 - 4;
+    std::fstream file(slice, std::ios::binary | std::ios::in | std::ios::out);
+    const unsigned char length[4] = {0xf0, 0xff, 0xff, 0x7f}; // 2147483632
+    file.seekp(std::streamoff(lengthAt));
+    file.write(reinterpret_cast<const char*>(length), 4);
+    file.close();
+    const std::string message = messageOf([&] { readDicom(folder); });
+    EXPECT_NE(message.find("slice0004.dcm: its pixel data holds 336 bytes where it declares "
+                           "2147483632 (cut short, or damaged)"),
+              std::string::npos)
+        << message;
 }
 
 // Symbolic links: one to the folder's parent and one to the folder itself
