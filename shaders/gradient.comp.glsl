@@ -46,25 +46,25 @@ float at(ivec3 p) {
 float smoothY[3][kRun + 2];
 float diffY[3][kRun + 2];
 
+// The prefilter over three neighbours along one axis. It adds a voxel's two
+// neighbours first, so a volume mirrored about a plane bakes the mirrored
+// gradient to the bit (rounding does not depend on the side).
+float prefilter(float below, float here, float above) {
+    return (below + above) * kGradientSideTap + here * kGradientMiddleTap;
+}
+
 void loadPlane(int k, ivec3 p) {
     for (int i = 0; i < kRun + 2; ++i) {
         ivec3 q = p + ivec3(i - 1, 0, 0);
         float below = at(q - ivec3(0, 1, 0)), here = at(q), above = at(q + ivec3(0, 1, 0));
-        smoothY[k][i] = (below + above) * kGradientSideTap + here * kGradientMiddleTap;
+        smoothY[k][i] = prefilter(below, here, above);
         diffY[k][i] = above - below;
     }
 }
 
-// The prefilter across x of `row` around column i. Each sum adds a voxel's
-// two neighbours first, so a volume mirrored about a plane bakes the
-// mirrored gradient to the bit (rounding does not depend on the side).
+// The prefilter across x of `row` around column i.
 float smoothX(float row[kRun + 2], int i) {
-    return (row[i - 1] + row[i + 1]) * kGradientSideTap + row[i] * kGradientMiddleTap;
-}
-
-// The prefilter across z of three planes' terms.
-float smoothZ(float below, float here, float above) {
-    return (below + above) * kGradientSideTap + here * kGradientMiddleTap;
+    return prefilter(row[i - 1], row[i], row[i + 1]);
 }
 
 void main() {
@@ -79,10 +79,10 @@ void main() {
             if (id.x + r >= params.dims.x) break;
             int i = r + 1;
             vec3 delta;
-            delta.x = smoothZ(smoothY[0][i + 1] - smoothY[0][i - 1],
+            delta.x = prefilter(smoothY[0][i + 1] - smoothY[0][i - 1],
                               smoothY[1][i + 1] - smoothY[1][i - 1],
                               smoothY[2][i + 1] - smoothY[2][i - 1]);
-            delta.y = smoothZ(smoothX(diffY[0], i), smoothX(diffY[1], i), smoothX(diffY[2], i));
+            delta.y = prefilter(smoothX(diffY[0], i), smoothX(diffY[1], i), smoothX(diffY[2], i));
             delta.z = smoothX(smoothY[2], i) - smoothX(smoothY[0], i);
             ivec3 voxel = id + ivec3(r, 0, s);
             imageStore(gradientImage, params.bricked != 0 ? gradientBrickTexel(voxel) : voxel,

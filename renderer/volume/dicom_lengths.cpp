@@ -144,10 +144,7 @@ bool checkDeclaredLengths(const std::string& file) {
     in.seekg(0, std::ios::end);
     const std::uint64_t size = std::uint64_t(std::max<std::streamoff>(in.tellg(), 0));
     ElementWalk w(in, size);
-    char magic[4] = {};
-    in.seekg(128);
-    const bool preamble = in.read(magic, 4) && std::string_view(magic, 4) == "DICM";
-    if (!preamble) {
+    if (!hasDicomPreamble(file)) {
         // A bare data set (no preamble), as GDCM also reads: laid out either
         // way, or not DICOM at all.
         return !walkDataset(w, 0, false) || !walkDataset(w, 0, true);
@@ -167,6 +164,12 @@ bool checkDeclaredLengths(const std::string& file) {
     throw InputError(file + ": its element " + tagText(*bad) + " declares " +
                      std::to_string(bad->length) + " bytes where the file holds " +
                      std::to_string(held) + " after it (cut short, or damaged)");
+}
+
+bool hasDicomPreamble(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    char magic[4] = {};
+    return in.seekg(128) && in.read(magic, 4) && std::string_view(magic, 4) == "DICM";
 }
 
 } // namespace cutaway::detail

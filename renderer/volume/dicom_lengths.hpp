@@ -12,4 +12,7 @@ namespace cutaway::detail {
 /// need not read it. Big-endian and deflated data sets are left to GDCM.
 bool checkDeclaredLengths(const std::string& file);
 
+/// Whether `file` has DICOM's preamble: 128 bytes, then "DICM".
+bool hasDicomPreamble(const std::string& file);
+
 } // namespace cutaway::detail

@@ -8,7 +8,6 @@
 #include "volume/io_util.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <gdcmMediaStorage.h>
 #include <gdcmReader.h>
 #include <gdcmScanner.h>
@@ -69,17 +68,11 @@ FileTags scanFile(const std::string& file) {
     return t;
 }
 
-bool hasPreamble(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    char magic[4] = {};
-    return in.seekg(128) && in.read(magic, 4) && std::string_view(magic, 4) == "DICM";
-}
-
 // A file that says it is DICOM (its preamble) and either is of a series and
 // an image class without Rows (the rest of it cut off), or cannot be read at
 // all: damaged, not foreign.
 bool damaged(const std::string& file, const std::string& uid, const std::string& sopClass) {
-    if (!hasPreamble(file)) return false;
+    if (!detail::hasDicomPreamble(file)) return false;
     if (!uid.empty() &&
         gdcm::MediaStorage::IsImage(gdcm::MediaStorage::GetMSType(sopClass.c_str())))
         return true;
@@ -161,7 +154,7 @@ bool isDicomPath(const fs::path& path) {
     if (fs::is_directory(path, ec)) return true;
     if (isDicomdir(path)) return true;
     if (detail::toLower(path.extension().string()) == ".dcm") return true;
-    return fs::is_regular_file(path, ec) && hasPreamble(path);
+    return fs::is_regular_file(path, ec) && detail::hasDicomPreamble(path.string());
 }
 
 namespace detail {
